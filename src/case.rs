@@ -1,0 +1,81 @@
+//! A case: one catalogue scheme bound to one built-in scene, chosen at run
+//! time, with every study available on it. Inside, the scheme and the scene
+//! are concrete types, so each study runs fully monomorphised code; the only
+//! dynamic dispatch is the one call that starts a study.
+
+use crate::error::Error;
+use crate::measure::order::{OrderRecord, OrderSpec, global_order};
+use crate::scene::{AnyScene, Scene, SceneMeta, SceneVisitor};
+use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor, visit_scheme};
+
+/// The studies that can be run on a scheme bound to a scene.
+pub trait Case: Send + Sync {
+    /// The scheme's claims.
+    fn scheme(&self) -> &SchemeMeta;
+    /// The scene.
+    fn scene(&self) -> SceneMeta;
+    /// The global order study.
+    fn order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error>;
+}
+
+/// A scheme and a `D`-dimensional scene of concrete types.
+#[derive(Clone, Debug)]
+pub struct Bound<M: 'static, S, const D: usize> {
+    /// The scheme.
+    pub scheme: &'static M,
+    /// The scene.
+    pub scene: S,
+}
+
+impl<M, S, const D: usize> Case for Bound<M, S, D>
+where
+    M: Scheme + Sync + 'static,
+    S: Scene<D> + Send + Sync,
+{
+    fn scheme(&self) -> &SchemeMeta {
+        self.scheme.meta()
+    }
+    fn scene(&self) -> SceneMeta {
+        self.scene.meta()
+    }
+    fn order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error> {
+        global_order(self.scheme, &self.scene, spec)
+    }
+}
+
+/// Binds the catalogue scheme `scheme_id` to `scene`.
+///
+/// ```
+/// use stepladder::case::case;
+/// use stepladder::scene::AnyScene;
+/// let c = case("leapfrog", &AnyScene::by_id("kepler-circular").unwrap()).unwrap();
+/// assert_eq!(c.scheme().order, 2);
+/// assert!(case("rk9", &AnyScene::by_id("harmonic").unwrap()).is_err());
+/// ```
+pub fn case(scheme_id: &str, scene: &AnyScene) -> Result<Box<dyn Case>, Error> {
+    visit_scheme(scheme_id, BindScheme(scene))
+}
+
+struct BindScheme<'a>(&'a AnyScene);
+
+impl SchemeVisitor for BindScheme<'_> {
+    type Output = Box<dyn Case>;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Box<dyn Case> {
+        self.0.visit(BindScene(scheme))
+    }
+}
+
+struct BindScene<M: 'static>(&'static M);
+
+impl<M: Scheme + Sync + 'static> SceneVisitor for BindScene<M> {
+    type Output = Box<dyn Case>;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        scene: &S,
+    ) -> Box<dyn Case> {
+        Box::new(Bound::<M, S, D> {
+            scheme: self.0,
+            scene: scene.clone(),
+        })
+    }
+}

@@ -1,0 +1,280 @@
+//! The command-line front end: each subcommand maps onto one study (or the
+//! whole suite). Exit status: 0 success, 1 a verdict failed, 2 bad input or
+//! an error, with a one-line message on stderr.
+
+use crate::case::case;
+use crate::error::Error;
+use crate::ladder::{AUTO_START, Ladder, LadderChoice};
+use crate::measure::order::{OrderRecord, OrderSpec};
+use crate::report;
+use crate::scene::AnyScene;
+use crate::scheme::catalogue;
+use crate::suite::{default_threads, run_suite};
+use clap::{Args, Parser, Subcommand};
+use serde::Serialize;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Is your time integrator as accurate, stable and geometric as it claims?
+#[derive(Debug, Parser)]
+#[command(name = "stepladder", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run every study on every scheme and scene, print the order table and
+    /// write the report (the default command).
+    Report(ReportArgs),
+    /// List the schemes and scenes with their metadata.
+    List {
+        /// Print JSON instead of tables.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Measure the global order of one scheme on one scene over a ladder of
+    /// step sizes (exit status 1 when the verdict fails).
+    Order(OrderArgs),
+}
+
+#[derive(Debug, Args)]
+struct ReportArgs {
+    /// Where to write the report.
+    #[arg(long, default_value = DEFAULT_REPORT)]
+    output: PathBuf,
+    /// Worker threads (default: every core); results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+}
+
+impl Default for ReportArgs {
+    fn default() -> Self {
+        Self {
+            output: PathBuf::from(DEFAULT_REPORT),
+            threads: None,
+        }
+    }
+}
+
+/// Where the report goes unless told otherwise.
+const DEFAULT_REPORT: &str = "REPORT.md";
+
+#[derive(Debug, Args)]
+struct OrderArgs {
+    /// Scheme id (see `stepladder list`).
+    #[arg(long)]
+    scheme: String,
+    /// Scene id (see `stepladder list`).
+    #[arg(long)]
+    scene: String,
+    /// End time of every rung (default: 2 sqrt(2) periods of the scene).
+    #[arg(long, allow_negative_numbers = true)]
+    t_end: Option<f64>,
+    /// Coarsest step of a fixed ladder (default: 1/8 of a period). Giving
+    /// any of --h0, --levels, --ratio replaces the automatic ladder.
+    #[arg(long, allow_negative_numbers = true)]
+    h0: Option<f64>,
+    /// Rungs of a fixed ladder (default 10).
+    #[arg(long)]
+    levels: Option<usize>,
+    /// Each rung's step over the previous one, in (0, 1) (default 0.5).
+    #[arg(long, allow_negative_numbers = true)]
+    ratio: Option<f64>,
+    /// Print the record as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Parses the arguments and runs the command; the process's exit status.
+pub fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => e.exit(), // --help, --version
+        Err(e) => {
+            // clap's message without its usage block, on one line like every other error
+            let text = e.render().to_string();
+            let message: Vec<&str> = text
+                .lines()
+                .map(str::trim)
+                .take_while(|l| !l.is_empty() && !l.starts_with("Usage:"))
+                .collect();
+            eprintln!("stepladder: {} (see --help)", message.join(" "));
+            return ExitCode::from(2);
+        }
+    };
+    match run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("stepladder: error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<ExitCode, Error> {
+    match cli
+        .command
+        .unwrap_or(Command::Report(ReportArgs::default()))
+    {
+        Command::Report(args) => report(&args),
+        Command::List { json } => {
+            list(json);
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Order(args) => order(&args),
+    }
+}
+
+fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
+    if args.threads == Some(0) {
+        return Err(Error::InvalidParameter {
+            name: "threads",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    let show = std::io::stderr().is_terminal();
+    let records = run_suite(
+        args.threads.unwrap_or_else(default_threads),
+        &|done, total, c| {
+            if show {
+                eprint!(
+                    "\r\x1b[2K[{done}/{total}] {} on {}",
+                    c.scheme().id,
+                    c.scene().id
+                );
+            }
+        },
+    )?;
+    if show {
+        eprintln!();
+    }
+    report::write_atomically(&args.output, &report::render(&records))?;
+    print!("{}", report::order_table(&records.order));
+    let failed = records.order.iter().filter(|r| !r.passed()).count();
+    println!(
+        "\n{} of {} verdicts pass; report written to {} in {:.1} s",
+        records.order.len() - failed,
+        records.order.len(),
+        args.output.display(),
+        records.total.as_secs_f64()
+    );
+    Ok(if failed == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+#[derive(Serialize)]
+struct Listing {
+    schemes: Vec<&'static crate::scheme::SchemeMeta>,
+    scenes: Vec<crate::scene::SceneMeta>,
+}
+
+fn list(json: bool) {
+    let listing = Listing {
+        schemes: catalogue(),
+        scenes: AnyScene::all().iter().map(AnyScene::meta).collect(),
+    };
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&listing).expect("plain data serialises")
+        );
+        return;
+    }
+    let mut t = report::Table::new(&[
+        "scheme",
+        "order",
+        "symplectic",
+        "symmetric",
+        "forces/step",
+        "name",
+    ]);
+    for m in &listing.schemes {
+        let yn = |b: bool| if b { "yes" } else { "no" }.to_string();
+        t.row(vec![
+            m.id.into(),
+            m.order.to_string(),
+            yn(m.symplectic),
+            yn(m.symmetric),
+            m.force_evaluations.to_string(),
+            m.name.into(),
+        ]);
+    }
+    println!("{}", t.render());
+    let mut t = report::Table::new(&["scene", "dimension", "parameters"]);
+    for s in &listing.scenes {
+        t.row(vec![
+            s.id.into(),
+            s.dimension.to_string(),
+            s.parameters.clone(),
+        ]);
+    }
+    print!("{}", t.render());
+}
+
+fn order(args: &OrderArgs) -> Result<ExitCode, Error> {
+    let scene = AnyScene::by_id(&args.scene)?;
+    let c = case(&args.scheme, &scene)?;
+    let ladder = if args.h0.is_none() && args.levels.is_none() && args.ratio.is_none() {
+        LadderChoice::Auto
+    } else {
+        let period = scene.period();
+        LadderChoice::Fixed(Ladder::new(
+            args.h0.unwrap_or(AUTO_START * period),
+            args.ratio.unwrap_or(0.5),
+            args.levels.unwrap_or(10),
+        )?)
+    };
+    let record = c.order(&OrderSpec {
+        t_end: args.t_end,
+        ladder,
+    })?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&record).expect("plain data serialises")
+        );
+    } else {
+        print_order(&record);
+    }
+    Ok(if record.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn print_order(r: &OrderRecord) {
+    println!(
+        "{} on {} ({}), t_end = {}: theoretical order {}",
+        r.scheme, r.scene, r.scene_parameters, r.t_end, r.theoretical_order
+    );
+    println!(
+        "{:>4} {:>11} {:>10} {:>11} {:>11} {:>7}  status",
+        "rung", "h", "steps", "error", "final", "local"
+    );
+    for (i, g) in r.rungs.iter().enumerate() {
+        let e = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.3e}"));
+        let status = match (g.used, g.dropped) {
+            (true, _) => "fitted",
+            (false, Some(d)) => d.explain(),
+            (false, None) => "unused",
+        };
+        println!(
+            "{i:>4} {:>11.4e} {:>10} {:>11} {:>11} {:>7}  {status}",
+            g.h,
+            g.steps,
+            e(g.error),
+            e(g.final_error),
+            g.local_order.map_or("-".into(), |p| format!("{p:.3}")),
+        );
+    }
+    let verdict = if r.passed() { "PASS" } else { "FAIL" };
+    println!("{verdict}: {}", r.reason);
+}

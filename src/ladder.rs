@@ -1,0 +1,182 @@
+//! Step-size ladders: `h_k = h0 * ratio^k`, each rung rounded to a whole
+//! number of steps over the run so that every rung ends exactly at `t_end`.
+
+use crate::error::Error;
+use serde::Serialize;
+
+use crate::tolerance::MIN_WINDOW;
+
+/// The most steps one request may take in total. At a few tens of
+/// nanoseconds a step this is about a minute of work; more is refused with an
+/// estimate instead of leaving the user waiting.
+pub const MAX_TOTAL_STEPS: u64 = 2_000_000_000;
+
+/// Rough cost of one step with its error evaluation, used only to tell the
+/// user how long a refused request would have taken.
+pub const SECONDS_PER_STEP: f64 = 3e-8;
+
+/// The automatic ladder's first step, in periods of the scene: coarse enough
+/// that every scheme starts outside its asymptotic regime (the window search
+/// drops such rungs, and they cost little).
+pub const AUTO_START: f64 = 1.0 / 8.0;
+
+/// The automatic ladder's largest rung, in steps: it bounds the cost of a
+/// ladder to a fraction of a second.
+pub const AUTO_MAX_RUNG_STEPS: u64 = 1 << 23;
+
+/// The automatic ladder stops refining once its window holds this many rungs.
+pub const AUTO_TARGET_WINDOW: usize = 12;
+
+/// The automatic ladder's ratio for a scheme of order `p`: halving up to
+/// order 2; beyond, `2^(-2/p)`, so the error still falls by about 4 per rung
+/// and a high-order scheme gets many rungs before the round-off floor.
+pub fn auto_ratio(order: u32) -> f64 {
+    if order <= 2 {
+        0.5
+    } else {
+        2f64.powf(-2.0 / order as f64)
+    }
+}
+
+/// How the step sizes of an order study are chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "kebab-case", tag = "kind")]
+pub enum LadderChoice {
+    /// Chosen from the scheme and the data: start at [`AUTO_START`] periods,
+    /// refine by [`auto_ratio`] until the asymptotic window is long enough,
+    /// the round-off floor is reached, or a rung would exceed
+    /// [`AUTO_MAX_RUNG_STEPS`].
+    Auto,
+    /// Exactly these rungs.
+    Fixed(Ladder),
+}
+
+/// A geometric ladder `h_k = h0 * ratio^k`, `k = 0..levels`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Ladder {
+    /// The coarsest step.
+    pub h0: f64,
+    /// Each rung's step over the previous one, in `(0, 1)`; 0.5 halves.
+    pub ratio: f64,
+    /// Number of rungs.
+    pub levels: usize,
+}
+
+/// One rung as run: a whole number of steps over `t_end`, and the step that
+/// actually results, `t_end / steps` (the fit uses this one).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct RungSize {
+    /// The step used.
+    pub h: f64,
+    /// Steps to `t_end`.
+    pub steps: u64,
+}
+
+impl Ladder {
+    /// A validated ladder.
+    ///
+    /// ```
+    /// use stepladder::ladder::Ladder;
+    /// assert!(Ladder::new(0.1, 0.5, 8).is_ok());
+    /// assert!(Ladder::new(0.1, 2.0, 8).is_err()); // must refine
+    /// assert!(Ladder::new(0.1, 0.5, 2).is_err()); // too few rungs to fit
+    /// ```
+    pub fn new(h0: f64, ratio: f64, levels: usize) -> Result<Self, Error> {
+        crate::scene::positive("h0", h0)?;
+        if !(ratio.is_finite() && ratio > 0.0 && ratio < 1.0) {
+            return Err(Error::InvalidParameter {
+                name: "ratio",
+                value: ratio,
+                expected: "a number in (0, 1): each rung's step is ratio times the previous one (0.5 halves)",
+            });
+        }
+        if levels < MIN_WINDOW {
+            return Err(Error::InvalidLadder(format!(
+                "{levels} rungs cannot measure an order: a fit needs at least {MIN_WINDOW}"
+            )));
+        }
+        Ok(Self { h0, ratio, levels })
+    }
+
+    /// The rungs over `[0, t_end]`, refusing ladders whose rungs would round
+    /// to the same step count or whose total cost is out of proportion.
+    pub fn rungs(&self, t_end: f64) -> Result<Vec<RungSize>, Error> {
+        let mut out: Vec<RungSize> = Vec::with_capacity(self.levels);
+        let mut total: u64 = 0;
+        for k in 0..self.levels {
+            let nominal = self.h0 * self.ratio.powi(k as i32);
+            let steps = steps_for(t_end, nominal)?;
+            if let Some(prev) = out.last()
+                && prev.steps >= steps
+            {
+                return Err(Error::InvalidLadder(format!(
+                    "rungs {} and {k} both round to {steps} steps over t_end = {t_end}: use a smaller h0 or a smaller ratio",
+                    k - 1
+                )));
+            }
+            total = total.saturating_add(steps);
+            out.push(RungSize {
+                h: t_end / steps as f64,
+                steps,
+            });
+        }
+        check_cost(total)?;
+        Ok(out)
+    }
+}
+
+/// Whole steps nearest to `t_end / h` (at least one), refusing absurd counts.
+pub fn steps_for(t_end: f64, h: f64) -> Result<u64, Error> {
+    let n = (t_end / h).round();
+    if !n.is_finite() || n >= MAX_TOTAL_STEPS as f64 {
+        check_cost(u64::MAX)?;
+    }
+    Ok((n as u64).max(1))
+}
+
+/// Refuses a request of `steps` total steps when it exceeds [`MAX_TOTAL_STEPS`].
+pub fn check_cost(steps: u64) -> Result<(), Error> {
+    if steps > MAX_TOTAL_STEPS {
+        return Err(Error::TooExpensive {
+            steps,
+            limit: MAX_TOTAL_STEPS,
+            seconds: steps as f64 * SECONDS_PER_STEP,
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rungs_end_exactly_at_t_end_and_refine() {
+        let l = Ladder::new(0.3, 0.5, 6).unwrap();
+        let r = l.rungs(10.0).unwrap();
+        assert_eq!(
+            r.iter().map(|x| x.steps).collect::<Vec<_>>(),
+            [33, 67, 133, 267, 533, 1067]
+        );
+        for x in &r {
+            assert!((x.h * x.steps as f64 - 10.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn refuses_bad_ladders() {
+        assert!(Ladder::new(0.0, 0.5, 6).is_err());
+        assert!(Ladder::new(f64::NAN, 0.5, 6).is_err());
+        assert!(Ladder::new(0.1, 1.0, 6).is_err());
+        assert!(Ladder::new(0.1, f64::INFINITY, 6).is_err());
+        // 0.99 refines too slowly for 10 steps: 10 and 10.1 both round to 10
+        assert!(matches!(
+            Ladder::new(1.0, 0.99, 6).unwrap().rungs(10.0),
+            Err(Error::InvalidLadder(_))
+        ));
+        assert!(matches!(
+            Ladder::new(1e-9, 0.5, 6).unwrap().rungs(10.0),
+            Err(Error::TooExpensive { .. })
+        ));
+    }
+}

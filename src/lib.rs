@@ -1,0 +1,45 @@
+//! # stepladder
+//!
+//! Tells, in one `cargo test`, whether a time integrator for Newton's
+//! equations `q'' = a(q)` is as accurate as it claims, by running it over a
+//! ladder of step sizes against scenes with exact solutions.
+//!
+//! - [`scheme`]: the catalogue (explicit Euler, Euler-Cromer, Störmer-Verlet,
+//!   leap-frog, velocity and position Verlet) and the [`scheme::Scheme`]
+//!   trait to bring your own.
+//! - [`scene`]: the harmonic oscillator and the circular Earth-Sun orbit, with
+//!   exact solutions; the [`scene::Scene`] trait to bring your own.
+//! - [`measure`]: the studies; [`measure::order::global_order`] measures the
+//!   global order with a 95% interval over an automatically chosen window.
+//! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
+//!
+//! ```
+//! use stepladder::measure::order::{global_order, OrderSpec};
+//! use stepladder::scene::KeplerCircular;
+//! use stepladder::scheme::Leapfrog;
+//!
+//! let record = global_order(&Leapfrog, &KeplerCircular, &OrderSpec::default())?;
+//! assert!(record.passed(), "{}", record.reason);
+//! let [lo, hi] = record.ci95.unwrap();
+//! assert!(lo <= 2.0 && 2.0 <= hi);
+//! # Ok::<(), stepladder::error::Error>(())
+//! ```
+#![warn(missing_docs)]
+
+pub mod case;
+pub mod cli;
+pub mod error;
+pub mod ladder;
+pub mod measure;
+pub mod report;
+pub mod run;
+pub mod scene;
+pub mod scheme;
+pub mod state;
+pub mod suite;
+pub mod tolerance;
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

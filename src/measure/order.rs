@@ -1,0 +1,499 @@
+//! The global order of accuracy, measured over a step-size ladder against the
+//! scene's exact solution.
+//!
+//! Each rung runs the scheme to `t_end` and records the largest phase-space
+//! error over every step of the trajectory (the global error) and the error
+//! at `t_end`. The asymptotic window is chosen from the data alone (see
+//! [`select_window`]), the order fitted over it (see [`super::fit`]), and the
+//! verdict given by [`tolerance::order_verdict`].
+
+use super::fit::{OrderFit, order_fit};
+use crate::error::Error;
+use crate::ladder::{
+    AUTO_MAX_RUNG_STEPS, AUTO_START, AUTO_TARGET_WINDOW, LadderChoice, RungSize, auto_ratio,
+    steps_for,
+};
+use crate::run::{Outcome, integrate};
+use crate::scene::Scene;
+use crate::scheme::Scheme;
+use crate::tolerance::{self, ERROR_CEILING, FLOOR_FRACTION, MIN_WINDOW};
+use serde::Serialize;
+
+/// What to measure: the end time and the ladder.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct OrderSpec {
+    /// End time of every rung; `None` for the scene's default.
+    pub t_end: Option<f64>,
+    /// The step sizes.
+    pub ladder: LadderChoice,
+}
+
+impl Default for OrderSpec {
+    fn default() -> Self {
+        Self {
+            t_end: None,
+            ladder: LadderChoice::Auto,
+        }
+    }
+}
+
+/// Why a rung is left out of the fit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DropReason {
+    /// The run blew up or a step failed.
+    Unstable,
+    /// The error is not small against the orbit ([`ERROR_CEILING`]).
+    AboveCeiling,
+    /// The local order has not yet settled (coarse end of the ladder).
+    PreAsymptotic,
+    /// The error no longer falls at the ladder's rate (fine end): round-off.
+    RoundOff,
+}
+
+impl DropReason {
+    /// A short explanation for tables.
+    pub fn explain(self) -> &'static str {
+        match self {
+            DropReason::Unstable => "unstable",
+            DropReason::AboveCeiling => "error above 10% of the orbit",
+            DropReason::PreAsymptotic => "pre-asymptotic",
+            DropReason::RoundOff => "round-off floor",
+        }
+    }
+}
+
+/// One rung as measured.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Rung {
+    /// The step used, `t_end / steps`.
+    pub h: f64,
+    /// Steps taken to `t_end`.
+    pub steps: u64,
+    /// Largest phase-space error over every step; `None` if the run blew up.
+    pub error: Option<f64>,
+    /// Phase-space error at `t_end`; `None` if the run blew up.
+    pub final_error: Option<f64>,
+    /// `ln(e_prev / e) / ln(h_prev / h)` against the previous rung.
+    pub local_order: Option<f64>,
+    /// The rung is in the fitted window.
+    pub used: bool,
+    /// Why it is not, when it was judged.
+    pub dropped: Option<DropReason>,
+    /// How the run ended.
+    pub outcome: Outcome,
+}
+
+/// Pass or fail.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    /// The measurement agrees with the claim.
+    Pass,
+    /// It does not, or could not be made.
+    Fail,
+}
+
+/// Everything the order study found: the record behind the CLI's `--json`,
+/// the snapshots and the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OrderRecord {
+    /// Scheme id.
+    pub scheme: &'static str,
+    /// Scene id.
+    pub scene: &'static str,
+    /// The scene's parameters.
+    pub scene_parameters: String,
+    /// The order the scheme claims.
+    pub theoretical_order: u32,
+    /// End time of every rung.
+    pub t_end: f64,
+    /// How the ladder was chosen.
+    pub ladder: LadderChoice,
+    /// The fitted order, when a window was found.
+    pub measured_order: Option<f64>,
+    /// Its 95% interval, at least [`tolerance::ORDER_RESOLUTION`] either
+    /// side (see [`tolerance::order_interval`]); the verdict uses it.
+    pub ci95: Option<[f64; 2]>,
+    /// The fit's details.
+    pub fit: Option<OrderFit>,
+    /// First and last rung of the window (indices into `rungs`).
+    pub window: Option<[usize; 2]>,
+    /// The verdict.
+    pub verdict: Verdict,
+    /// Why, in one line.
+    pub reason: String,
+    /// Every rung, coarse to fine.
+    pub rungs: Vec<Rung>,
+}
+
+impl OrderRecord {
+    /// True when the verdict is a pass.
+    pub fn passed(&self) -> bool {
+        self.verdict == Verdict::Pass
+    }
+}
+
+/// Measures the global order of `scheme` on `scene`.
+///
+/// ```
+/// use stepladder::measure::order::{global_order, OrderSpec};
+/// use stepladder::scene::Harmonic;
+/// use stepladder::scheme::{Scheme, VELOCITY_VERLET};
+///
+/// let record = global_order(&VELOCITY_VERLET, &Harmonic::default(), &OrderSpec::default()).unwrap();
+/// assert!(record.passed(), "{}", record.reason);
+/// assert!((record.measured_order.unwrap() - 2.0).abs() < 0.01);
+/// ```
+pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    spec: &OrderSpec,
+) -> Result<OrderRecord, Error> {
+    let meta = scheme.meta();
+    let scene_meta = scene.meta();
+    if scene.exact(0.0).is_none() {
+        return Err(Error::NoExactSolution(scene_meta.id));
+    }
+    let t_end = match spec.t_end {
+        Some(t) => crate::scene::positive("t_end", t)?,
+        None => scene.default_t_end(),
+    };
+    let scale = scene.scale();
+    let mut rungs: Vec<Rung> = Vec::new();
+    match spec.ladder {
+        LadderChoice::Fixed(ladder) => {
+            for size in ladder.rungs(t_end)? {
+                rungs.push(run_rung(scheme, scene, t_end, size));
+            }
+        }
+        LadderChoice::Auto => {
+            let (h0, ratio) = (AUTO_START * scene.period(), auto_ratio(meta.order));
+            for k in 0.. {
+                let steps = steps_for(t_end, h0 * ratio.powi(k))?;
+                if rungs.last().is_some_and(|r| r.steps >= steps) {
+                    continue;
+                }
+                if steps > AUTO_MAX_RUNG_STEPS {
+                    break;
+                }
+                let size = RungSize {
+                    h: t_end / steps as f64,
+                    steps,
+                };
+                rungs.push(run_rung(scheme, scene, t_end, size));
+                let choice = select_window(&errors(&rungs), scale);
+                if choice.window_len() >= AUTO_TARGET_WINDOW || choice.at_floor >= 2 {
+                    break;
+                }
+            }
+        }
+    }
+    fill_local_orders(&mut rungs);
+    let choice = select_window(&errors(&rungs), scale);
+    for (rung, reason) in rungs.iter_mut().zip(&choice.dropped) {
+        rung.dropped = *reason;
+    }
+    let window = choice.window.map(|(a, b)| [a, b]);
+    let fit = choice.window.and_then(|(a, b)| {
+        let pts: Vec<(f64, f64)> = rungs[a..=b]
+            .iter()
+            .map(|r| (r.h, r.error.unwrap_or(f64::NAN)))
+            .collect();
+        order_fit(&pts)
+    });
+    if let (Some([a, b]), Some(_)) = (window, fit) {
+        rungs[a..=b].iter_mut().for_each(|r| r.used = true);
+    }
+    let theoretical = meta.order as f64;
+    let ci95 = fit.map(|f| tolerance::order_interval(f.order, f.ci95));
+    let (verdict, reason) = match (&fit, ci95, window) {
+        (Some(f), Some(ci), Some([a, b])) => {
+            match tolerance::order_verdict(theoretical, f.order, ci) {
+                Ok(()) => (
+                    Verdict::Pass,
+                    format!(
+                        "order {:.3} in [{:.3}, {:.3}] over rungs {a}..{b}",
+                        f.order, ci[0], ci[1]
+                    ),
+                ),
+                Err(why) => (Verdict::Fail, why),
+            }
+        }
+        _ => (
+            Verdict::Fail,
+            format!(
+                "no asymptotic window of {MIN_WINDOW} rungs among {} (see the rungs' drop reasons)",
+                rungs.len()
+            ),
+        ),
+    };
+    Ok(OrderRecord {
+        scheme: meta.id,
+        scene: scene_meta.id,
+        scene_parameters: scene_meta.parameters,
+        theoretical_order: meta.order,
+        t_end,
+        ladder: spec.ladder,
+        measured_order: fit.map(|f| f.order),
+        ci95,
+        fit,
+        window: fit.and(window),
+        verdict,
+        reason,
+        rungs,
+    })
+}
+
+/// Runs one rung and measures its global and final errors.
+fn run_rung<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    t_end: f64,
+    size: RungSize,
+) -> Rung {
+    let (mut worst, mut last) = (0.0f64, 0.0);
+    let outcome = integrate(
+        scheme,
+        scene,
+        &scene.initial(),
+        size.h,
+        size.steps,
+        |n, t, s| {
+            // the last step's time is t_end itself, not n h rounded
+            let t = if n == size.steps { t_end } else { t };
+            let exact = scene.exact(t).expect("checked before the ladder");
+            last = scene.phase_distance(s, &exact);
+            worst = worst.max(last);
+        },
+    );
+    let done = outcome.completed();
+    Rung {
+        h: size.h,
+        steps: size.steps,
+        error: done.then_some(worst),
+        final_error: done.then_some(last),
+        local_order: None,
+        used: false,
+        dropped: None,
+        outcome,
+    }
+}
+
+fn errors(rungs: &[Rung]) -> Vec<(f64, Option<f64>)> {
+    rungs.iter().map(|r| (r.h, r.error)).collect()
+}
+
+fn fill_local_orders(rungs: &mut [Rung]) {
+    for k in 1..rungs.len() {
+        rungs[k].local_order = local_order(
+            (rungs[k - 1].h, rungs[k - 1].error),
+            (rungs[k].h, rungs[k].error),
+        );
+    }
+}
+
+/// The local order between two rungs, `ln(e1/e2) / ln(h1/h2)`.
+pub fn local_order(coarse: (f64, Option<f64>), fine: (f64, Option<f64>)) -> Option<f64> {
+    let (e1, e2) = (coarse.1?, fine.1?);
+    let p = (e1 / e2).ln() / (coarse.0 / fine.0).ln();
+    p.is_finite().then_some(p)
+}
+
+/// The asymptotic window chosen from a ladder's data.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WindowChoice {
+    /// Per rung: why it is left out, if it is.
+    pub dropped: Vec<Option<DropReason>>,
+    /// First and last rung of the window, if one of [`MIN_WINDOW`] rungs exists.
+    pub window: Option<(usize, usize)>,
+    /// The median local order the window was judged against.
+    pub median_local_order: Option<f64>,
+    /// How many rungs at the fine end sit on the round-off floor.
+    pub at_floor: usize,
+}
+
+impl WindowChoice {
+    /// Rungs in the window (0 without one).
+    pub fn window_len(&self) -> usize {
+        self.window.map_or(0, |(a, b)| b - a + 1)
+    }
+}
+
+/// Chooses the asymptotic window from `(h, error)` data ordered coarse to
+/// fine (`None` for a rung that blew up), using the data alone, never the
+/// order the scheme claims:
+///
+/// 1. rungs that blew up, or whose error exceeds [`ERROR_CEILING`] times the
+///    scene's `scale`, are out; the longest run of consecutive remaining rungs
+///    is kept;
+/// 2. the first rung whose local order falls below [`FLOOR_FRACTION`] of the
+///    median local order, and every finer one, sit on the round-off floor;
+/// 3. rungs at either end whose local order strays from the median by more
+///    than [`tolerance::plateau_tolerance`] are pre-asymptotic (coarse end)
+///    or touched by round-off (fine end).
+pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
+    let mut dropped: Vec<Option<DropReason>> = data
+        .iter()
+        .map(|&(_, e)| match e {
+            Some(e) if e.is_nan() || e.is_infinite() => Some(DropReason::Unstable),
+            Some(e) if e > ERROR_CEILING * scale => Some(DropReason::AboveCeiling),
+            Some(e) if e > 0.0 => None,
+            Some(_) => Some(DropReason::RoundOff), // exactly zero: nothing left to resolve
+            None => Some(DropReason::Unstable),
+        })
+        .collect();
+    let none = |dropped| WindowChoice {
+        dropped,
+        window: None,
+        median_local_order: None,
+        at_floor: 0,
+    };
+    // the longest run of candidates; ties go to the finer run
+    let Some((mut a, mut b)) = longest_run(&dropped) else {
+        return none(dropped);
+    };
+    for (i, d) in dropped.iter_mut().enumerate() {
+        if d.is_none() && (i < a || i > b) {
+            *d = Some(if i < a {
+                DropReason::PreAsymptotic
+            } else {
+                DropReason::RoundOff
+            });
+        }
+    }
+    let local = |i: usize| {
+        local_order((data[i - 1].0, data[i - 1].1), (data[i].0, data[i].1)).unwrap_or(f64::NAN)
+    };
+    let mut median = f64::NAN;
+    let mut at_floor = 0;
+    // trim the floor, re-judging the median without it, until it settles
+    loop {
+        if b <= a {
+            break;
+        }
+        median = median_of((a + 1..=b).map(local).collect());
+        let Some(first) =
+            (a + 1..=b).find(|&i| local(i).is_nan() || local(i) < FLOOR_FRACTION * median)
+        else {
+            break;
+        };
+        at_floor += b + 1 - first;
+        for d in &mut dropped[first..=b] {
+            *d = Some(DropReason::RoundOff);
+        }
+        b = first - 1;
+    }
+    if median.is_nan() || median <= 0.0 {
+        for d in &mut dropped[a..=b] {
+            *d = Some(DropReason::PreAsymptotic);
+        }
+        return WindowChoice {
+            at_floor,
+            ..none(dropped)
+        };
+    }
+    let delta = tolerance::plateau_tolerance(median);
+    while b > a && (local(b) - median).abs() > delta {
+        dropped[b] = Some(DropReason::RoundOff);
+        b -= 1;
+    }
+    while a < b && (local(a + 1) - median).abs() > delta {
+        dropped[a] = Some(DropReason::PreAsymptotic);
+        a += 1;
+    }
+    let window = (b + 1 - a >= MIN_WINDOW).then_some((a, b));
+    WindowChoice {
+        dropped,
+        window,
+        median_local_order: Some(median),
+        at_floor,
+    }
+}
+
+fn longest_run(dropped: &[Option<DropReason>]) -> Option<(usize, usize)> {
+    let mut best: Option<(usize, usize)> = None;
+    let mut start = None;
+    for i in 0..=dropped.len() {
+        let candidate = dropped.get(i).is_some_and(|d| d.is_none());
+        match (candidate, start) {
+            (true, None) => start = Some(i),
+            (false, Some(s)) => {
+                if best.is_none_or(|(a, b)| i - s >= b + 1 - a) {
+                    best = Some((s, i - 1));
+                }
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    best
+}
+
+fn median_of(mut v: Vec<f64>) -> f64 {
+    v.retain(|x| x.is_finite());
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        0.5 * (v[m - 1] + v[m])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ladder(e: impl Fn(f64) -> Option<f64>, n: i32) -> Vec<(f64, Option<f64>)> {
+        (0..n)
+            .map(|k| 0.5 / 2f64.powi(k))
+            .map(|h| (h, e(h)))
+            .collect()
+    }
+
+    #[test]
+    fn window_excludes_blow_ups_coarse_errors_and_the_floor() {
+        // second order, blows up at the coarsest rung, error above the
+        // ceiling at the next, and a round-off floor of 1e-9 growing as 1/h
+        let data = ladder(
+            |h| {
+                if h > 0.4 {
+                    None
+                } else {
+                    Some(2.0 * h * h + 1e-13 / h)
+                }
+            },
+            20,
+        );
+        let w = select_window(&data, 1.0);
+        assert_eq!(w.dropped[0], Some(DropReason::Unstable));
+        assert_eq!(w.dropped[1], Some(DropReason::AboveCeiling));
+        let (a, b) = w.window.unwrap();
+        assert!(a <= 3, "{w:?}");
+        // the floor, 2 h^2 = 1e-13 / h, is crossed at h = 3.7e-5 (rung 13.7)
+        assert!((10..=13).contains(&b), "{w:?}");
+        assert!(
+            w.dropped[b + 1..]
+                .iter()
+                .all(|d| *d == Some(DropReason::RoundOff))
+        );
+        assert!(w.at_floor >= 2);
+    }
+
+    #[test]
+    fn no_window_when_the_error_does_not_converge() {
+        let w = select_window(&ladder(|_| Some(0.01), 10), 1.0);
+        assert!(w.window.is_none());
+    }
+
+    #[test]
+    fn local_order_of_a_power_law() {
+        let p = local_order((0.1, Some(3e-4)), (0.05, Some(3e-4 / 8.0))).unwrap();
+        assert!((p - 3.0).abs() < 1e-12);
+        assert!(local_order((0.1, None), (0.05, Some(1.0))).is_none());
+    }
+}

@@ -1,0 +1,76 @@
+//! The integration loop every study uses: fixed steps, synchronised output at
+//! every step, and a blow-up detected as a measured outcome.
+
+use crate::scene::Scene;
+use crate::scheme::{Scheme, StepFailure};
+use crate::state::State;
+use crate::tolerance;
+use serde::Serialize;
+
+/// How a run ended.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Outcome {
+    /// Every step was taken and the state stayed bounded.
+    Completed,
+    /// The state left the blow-up bound or stopped being finite.
+    Unstable {
+        /// The step at which the state was first out of bounds.
+        step: u64,
+        /// Its time.
+        time: f64,
+    },
+    /// A step could not be carried out.
+    Failed {
+        /// The step that failed.
+        step: u64,
+        /// Its time.
+        time: f64,
+        /// Why.
+        failure: StepFailure,
+    },
+}
+
+impl Outcome {
+    /// True for a run that went to the end.
+    pub fn completed(&self) -> bool {
+        matches!(self, Outcome::Completed)
+    }
+}
+
+/// Runs `steps` steps of size `h` from `start`, calling `observe(n, t, state)`
+/// with the synchronised state at every whole step `n = 0..=steps`, `t = n h`.
+///
+/// Stops early, without calling `observe` on the bad state, when the state is
+/// non-finite or farther than [`tolerance::blow_up_bound`] from the origin in
+/// phase space.
+pub fn integrate<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    start: &State<D>,
+    h: f64,
+    steps: u64,
+    mut observe: impl FnMut(u64, f64, &State<D>),
+) -> Outcome {
+    let bound = tolerance::blow_up_bound(scene.scale());
+    let w = scene.frequency();
+    let mut carry = scheme.start(scene, start, h);
+    observe(0, 0.0, start);
+    for n in 1..=steps {
+        let time = n as f64 * h;
+        if let Err(failure) = scheme.step(scene, &mut carry, h) {
+            return Outcome::Failed {
+                step: n,
+                time,
+                failure,
+            };
+        }
+        let s = scheme.state(&carry, h);
+        let size2 = s.q.norm_squared() + (s.v / w).norm_squared();
+        if size2.is_nan() || size2 > bound * bound {
+            return Outcome::Unstable { step: n, time };
+        }
+        observe(n, time, &s);
+    }
+    Outcome::Completed
+}

@@ -1,0 +1,198 @@
+//! Scenes: Newtonian problems `q'' = a(q)` with a potential, a time scale and,
+//! where one exists, an exact solution to judge a scheme against.
+//!
+//! A scene models only what it needs: the oscillator is 1-D, the orbit 2-D,
+//! and a force evaluation is a handful of flops on stack vectors.
+
+mod counted;
+mod harmonic;
+mod kepler;
+
+pub use counted::Counted;
+pub use harmonic::Harmonic;
+pub use kepler::KeplerCircular;
+
+use crate::error::Error;
+use crate::state::{Real, State};
+use nalgebra::SVector;
+use serde::Serialize;
+use std::f64::consts::TAU;
+
+/// What a scene is, for listings, records and the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SceneMeta {
+    /// Kebab-case identifier used on the command line.
+    pub id: &'static str,
+    /// Human-readable name.
+    pub name: &'static str,
+    /// Degrees of freedom of the position (1 for the oscillator, 2 for the orbit).
+    pub dimension: usize,
+    /// The parameters this instance was built with, as `name = value` pairs.
+    pub parameters: String,
+    /// Where the problem and its exact solution come from.
+    pub reference: &'static str,
+}
+
+/// A conservative Newtonian problem `q'' = a(q) = -grad V(q)` in `D` dimensions.
+///
+/// `acceleration` and `potential` are generic over the scalar so that studies
+/// can differentiate them (tangent maps, force against `-grad V`); for `f64`
+/// they compile to plain arithmetic.
+pub trait Scene<const D: usize> {
+    /// Identity and parameters.
+    fn meta(&self) -> SceneMeta;
+
+    /// The state at `t = 0`.
+    fn initial(&self) -> State<D>;
+
+    /// The acceleration `a(q)`; one call is one force evaluation.
+    fn acceleration<R: Real>(&self, q: &SVector<R, D>) -> SVector<R, D>;
+
+    /// The potential energy per unit mass `V(q)`.
+    fn potential<R: Real>(&self, q: &SVector<R, D>) -> R;
+
+    /// The natural time scale: the period of the motion.
+    fn period(&self) -> f64;
+
+    /// The exact state at time `t`, when the scene has a closed form.
+    fn exact(&self, t: f64) -> Option<State<D>>;
+
+    /// The total energy per unit mass `|v|^2 / 2 + V(q)`.
+    fn energy(&self, s: &State<D>) -> f64 {
+        0.5 * s.v.norm_squared() + self.potential(&s.q)
+    }
+
+    /// The angular frequency `2 pi / period` that turns velocities into lengths.
+    fn frequency(&self) -> f64 {
+        TAU / self.period()
+    }
+
+    /// Phase-space distance between two states, in length units:
+    /// `sqrt(|dq|^2 + |dv / w|^2)` with `w = 2 pi / period`, so position and
+    /// velocity errors weigh alike whatever the units of time.
+    fn phase_distance(&self, a: &State<D>, b: &State<D>) -> f64 {
+        let w = self.frequency();
+        ((a.q - b.q).norm_squared() + ((a.v - b.v) / w).norm_squared()).sqrt()
+    }
+
+    /// The size of the motion in the same units: the phase-space norm of the
+    /// initial state. Errors are judged small or large against it.
+    fn scale(&self) -> f64 {
+        let s = self.initial();
+        (s.q.norm_squared() + (s.v / self.frequency()).norm_squared()).sqrt()
+    }
+
+    /// The default end time of an accuracy run: 2 sqrt(2) periods, an
+    /// irrational multiple, so no error cancellation at a half or whole period
+    /// can flatter a scheme.
+    fn default_t_end(&self) -> f64 {
+        2.0 * std::f64::consts::SQRT_2 * self.period()
+    }
+}
+
+/// Rejects a parameter that must be a finite, strictly positive number.
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, Error> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            expected: "a finite number > 0",
+        })
+    }
+}
+
+/// Rejects a parameter that must be finite.
+pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, Error> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            expected: "a finite number",
+        })
+    }
+}
+
+/// Something to do with one scene, whatever its type and dimension.
+pub trait SceneVisitor {
+    /// What the visit produces.
+    type Output;
+    /// Called with the chosen scene.
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        scene: &S,
+    ) -> Self::Output;
+}
+
+macro_rules! scenes {
+    ($($variant:ident($ty:ty, $dim:literal)),* $(,)?) => {
+        /// Any built-in scene: the registry the CLI, the report and the tests
+        /// loop over. Adding a scene is one file plus one line here.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub enum AnyScene {
+            $(
+                #[doc = concat!("[`", stringify!($ty), "`]")]
+                $variant($ty),
+            )*
+        }
+
+        impl AnyScene {
+            /// Every built-in scene with its default parameters.
+            pub fn all() -> Vec<AnyScene> {
+                vec![$(AnyScene::$variant(<$ty>::default())),*]
+            }
+
+            /// Runs `visitor` on the scene.
+            pub fn visit<V: SceneVisitor>(&self, visitor: V) -> V::Output {
+                match self {
+                    $(AnyScene::$variant(s) => visitor.visit::<$ty, $dim>(s),)*
+                }
+            }
+        }
+    };
+}
+
+scenes![Harmonic(Harmonic, 1), KeplerCircular(KeplerCircular, 2)];
+
+/// Reads `(metadata, period)` off any scene.
+struct Describe;
+impl SceneVisitor for Describe {
+    type Output = (SceneMeta, f64);
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        s: &S,
+    ) -> (SceneMeta, f64) {
+        (s.meta(), s.period())
+    }
+}
+
+impl AnyScene {
+    /// The scene's metadata.
+    pub fn meta(&self) -> SceneMeta {
+        self.visit(Describe).0
+    }
+
+    /// The scene's period.
+    pub fn period(&self) -> f64 {
+        self.visit(Describe).1
+    }
+
+    /// The built-in scene with this id, with default parameters.
+    pub fn by_id(id: &str) -> Result<AnyScene, Error> {
+        Self::all()
+            .into_iter()
+            .find(|s| s.meta().id == id)
+            .ok_or_else(|| Error::UnknownScene {
+                id: id.to_string(),
+                valid: scene_ids().join(", "),
+            })
+    }
+}
+
+/// Every built-in scene id, in registry order.
+pub fn scene_ids() -> Vec<&'static str> {
+    AnyScene::all().iter().map(|s| s.meta().id).collect()
+}

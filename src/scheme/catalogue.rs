@@ -1,0 +1,44 @@
+//! The one registry of every scheme. Adding a scheme is one file (or one
+//! table) plus one line here; every test, study and report loops over it.
+
+use super::splitting::{EULER_CROMER, POSITION_VERLET, VELOCITY_VERLET};
+use super::{Euler, Leapfrog, Scheme, SchemeMeta, StormerVerlet};
+use crate::error::Error;
+
+/// Something to do with one scheme, whatever its concrete type: the way to
+/// run generic, statically dispatched code on a scheme chosen at run time.
+pub trait SchemeVisitor {
+    /// What the visit produces.
+    type Output;
+    /// Called with the chosen scheme.
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output;
+}
+
+macro_rules! catalogue {
+    ($($scheme:expr),* $(,)?) => {
+        /// The metadata of every scheme in the catalogue, in catalogue order.
+        pub fn catalogue() -> Vec<&'static SchemeMeta> {
+            vec![$( $scheme.meta() ),*]
+        }
+
+        /// Runs `visitor` on the scheme with this id.
+        pub fn visit_scheme<V: SchemeVisitor>(id: &str, visitor: V) -> Result<V::Output, Error> {
+            $( if $scheme.meta().id == id { return Ok(visitor.visit(&$scheme)); } )*
+            Err(Error::UnknownScheme { id: id.to_string(), valid: scheme_ids().join(", ") })
+        }
+    };
+}
+
+catalogue![
+    Euler,
+    EULER_CROMER,
+    StormerVerlet,
+    Leapfrog,
+    VELOCITY_VERLET,
+    POSITION_VERLET,
+];
+
+/// Every scheme id, in catalogue order.
+pub fn scheme_ids() -> Vec<&'static str> {
+    catalogue().iter().map(|m| m.id).collect()
+}

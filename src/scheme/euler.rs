@@ -1,0 +1,60 @@
+//! Explicit (forward) Euler.
+
+use super::{Scheme, SchemeMeta, StepFailure};
+use crate::scene::Scene;
+use crate::state::{Real, State};
+
+/// Explicit Euler: `q' = q + h v`, `v' = v + h a(q)`, both from the old state.
+///
+/// First order, neither symplectic nor symmetric: on the oscillator each step
+/// multiplies the energy by `1 + (h w0)^2`, so orbits spiral outwards.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Euler;
+
+impl Euler {
+    /// What explicit Euler claims.
+    pub const META: SchemeMeta = SchemeMeta {
+        id: "euler",
+        name: "explicit Euler",
+        order: 1,
+        symplectic: false,
+        symmetric: false,
+        force_evaluations: 1,
+        implicit: false,
+        reference: "L. Euler, Institutionum calculi integralis (1768); course notes' Earth-Sun code",
+    };
+}
+
+impl Scheme for Euler {
+    type Carry<R: Real, const D: usize> = State<D, R>;
+
+    fn meta(&self) -> &SchemeMeta {
+        &Self::META
+    }
+
+    fn start<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        _: &S,
+        s: &State<D, R>,
+        _: R,
+    ) -> State<D, R> {
+        *s
+    }
+
+    #[inline(always)]
+    fn step<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        s: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        let a = scene.acceleration(&s.q);
+        s.q += s.v * h;
+        s.v += a * h;
+        Ok(())
+    }
+
+    fn state<R: Real, const D: usize>(&self, s: &State<D, R>, _: R) -> State<D, R> {
+        *s
+    }
+}

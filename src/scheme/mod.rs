@@ -1,0 +1,105 @@
+//! Schemes: one step of a time integrator for `q'' = a(q)`, with the
+//! metadata that says what the scheme claims to be.
+//!
+//! A scheme may carry more than `(q, v)` between steps (the two-step Störmer
+//! form keeps the previous position, leap-frog a half-step velocity, Verlet
+//! the acceleration it will reuse); [`Scheme::state`] hands studies a
+//! synchronised `(q, v)` at whole steps so they compare like with like.
+
+mod catalogue;
+mod euler;
+mod splitting;
+mod verlet;
+
+pub use catalogue::{SchemeVisitor, catalogue, scheme_ids, visit_scheme};
+pub use euler::Euler;
+pub use splitting::{EULER_CROMER, Flow, POSITION_VERLET, SplittingTable, TABLES, VELOCITY_VERLET};
+pub use verlet::{Leapfrog, StormerVerlet};
+
+use crate::scene::Scene;
+use crate::state::{Real, State};
+use serde::Serialize;
+
+/// What a scheme claims to be. Studies measure each claim; the report and the
+/// tests compare the measurement with it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SchemeMeta {
+    /// Kebab-case identifier used on the command line.
+    pub id: &'static str,
+    /// Human-readable name.
+    pub name: &'static str,
+    /// Theoretical global order of accuracy.
+    pub order: u32,
+    /// The one-step map preserves the symplectic form.
+    pub symplectic: bool,
+    /// Stepping with `-h` undoes a step with `h` (time-symmetric, reversible).
+    pub symmetric: bool,
+    /// Force evaluations per step, once the scheme has started.
+    pub force_evaluations: u32,
+    /// The step solves an equation (implicit scheme).
+    pub implicit: bool,
+    /// Where the scheme is published or derived.
+    pub reference: &'static str,
+}
+
+/// Why a single step could not be completed (an implicit solve that did not
+/// converge, say). A blow-up is not a failure of the step: it is detected by
+/// the run and reported as instability.
+#[derive(Clone, Debug, PartialEq, Serialize, thiserror::Error)]
+pub enum StepFailure {
+    /// The implicit equation of the step was not solved to tolerance.
+    #[error(
+        "implicit solve did not converge after {iterations} iterations (residual {residual:e})"
+    )]
+    NotConverged {
+        /// Iterations spent.
+        iterations: u32,
+        /// The last correction's size.
+        residual: f64,
+    },
+}
+
+/// A time integrator for `q'' = a(q)` on any scene and in any scalar type.
+///
+/// Implementations are a few lines: see [`Euler`] for the simplest. Every
+/// method is generic so that the step is monomorphised for each scene (no
+/// dynamic dispatch, no allocation in a step) and can be run in dual numbers
+/// to differentiate it.
+pub trait Scheme {
+    /// What the scheme keeps between steps.
+    type Carry<R: Real, const D: usize>: Clone + std::fmt::Debug;
+
+    /// The scheme's claims.
+    fn meta(&self) -> &SchemeMeta;
+
+    /// Prepares the carry from a synchronised state for steps of size `h`
+    /// (this is where a two-step or staggered scheme does its start-up).
+    fn start<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        state: &State<D, R>,
+        h: R,
+    ) -> Self::Carry<R, D>;
+
+    /// Advances the carry by one step of size `h`.
+    fn step<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        carry: &mut Self::Carry<R, D>,
+        h: R,
+    ) -> Result<(), StepFailure>;
+
+    /// The synchronised `(q, v)` at the carry's whole step, without a force
+    /// evaluation.
+    fn state<R: Real, const D: usize>(&self, carry: &Self::Carry<R, D>, h: R) -> State<D, R>;
+}
+
+/// The carry of a one-step scheme that reuses the last acceleration: the
+/// state and `a(q)` at it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WithAcceleration<R: Real, const D: usize> {
+    /// The synchronised state.
+    pub state: State<D, R>,
+    /// `a(state.q)`, kept so the next step need not evaluate it again.
+    pub a: nalgebra::SVector<R, D>,
+}

@@ -1,0 +1,197 @@
+//! Splitting methods as data: one drift/kick stepper over coefficient tables.
+//!
+//! A drift `q += c h v` and a kick `v += c h a(q)` are each exact flows of a
+//! part of the Hamiltonian `|v|^2/2 + V(q)`, hence symplectic; any sequence of
+//! them is a symplectic scheme, and a palindromic sequence is time-symmetric.
+//! A table lists the drift and kick weights in the order they are applied.
+
+use super::{Scheme, SchemeMeta, StepFailure, WithAcceleration};
+use crate::scene::Scene;
+use crate::state::{Real, State};
+
+/// Which flow a splitting applies first.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flow {
+    /// `q += c h v`.
+    Drift,
+    /// `v += c h a(q)`.
+    Kick,
+}
+
+/// A splitting scheme: alternating drifts and kicks with these weights,
+/// starting with `first`. The longer list may exceed the other by one.
+#[derive(Clone, Copy, Debug)]
+pub struct SplittingTable {
+    /// The scheme's claims; `force_evaluations` is derived from the weights.
+    pub meta: SchemeMeta,
+    /// The flow applied first.
+    pub first: Flow,
+    /// Drift weights, in order of application.
+    pub drift: &'static [f64],
+    /// Kick weights, in order of application.
+    pub kick: &'static [f64],
+}
+
+impl SplittingTable {
+    /// True when the step starts and ends with a kick: the final kick's
+    /// acceleration is the next step's first, so it is evaluated once
+    /// ("first same as last").
+    pub const fn reuses_acceleration(&self) -> bool {
+        matches!(self.first, Flow::Kick) && self.kick.len() == self.drift.len() + 1
+    }
+
+    /// A table from its claims and weights. `meta.force_evaluations` is
+    /// derived here from the weights (one per kick, less a reused one), so
+    /// whatever the caller wrote there is replaced.
+    pub const fn new(
+        mut meta: SchemeMeta,
+        first: Flow,
+        drift: &'static [f64],
+        kick: &'static [f64],
+    ) -> Self {
+        let table = Self {
+            meta,
+            first,
+            drift,
+            kick,
+        };
+        meta.force_evaluations = kick.len() as u32 - table.reuses_acceleration() as u32;
+        Self { meta, ..table }
+    }
+
+    /// The flows in order of application with their weights.
+    pub fn sequence(&self) -> Vec<(Flow, f64)> {
+        let (lead, lag, other) = match self.first {
+            Flow::Drift => (self.drift, self.kick, Flow::Kick),
+            Flow::Kick => (self.kick, self.drift, Flow::Drift),
+        };
+        let mut ops = Vec::with_capacity(lead.len() + lag.len());
+        for (i, &c) in lead.iter().enumerate() {
+            ops.push((self.first, c));
+            if let Some(&d) = lag.get(i) {
+                ops.push((other, d));
+            }
+        }
+        ops
+    }
+}
+
+impl Scheme for SplittingTable {
+    type Carry<R: Real, const D: usize> = WithAcceleration<R, D>;
+
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    fn start<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        state: &State<D, R>,
+        _: R,
+    ) -> WithAcceleration<R, D> {
+        let a = if self.reuses_acceleration() {
+            scene.acceleration(&state.q)
+        } else {
+            nalgebra::SVector::zeros()
+        };
+        WithAcceleration { state: *state, a }
+    }
+
+    #[inline(always)]
+    fn step<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        c: &mut WithAcceleration<R, D>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        let (mut q, mut v) = (c.state.q, c.state.v);
+        match self.first {
+            Flow::Kick => {
+                let mut a = if self.reuses_acceleration() {
+                    c.a
+                } else {
+                    scene.acceleration(&q)
+                };
+                for (i, &b) in self.kick.iter().enumerate() {
+                    if i > 0 {
+                        a = scene.acceleration(&q);
+                    }
+                    v += a * (h * R::of(b));
+                    if let Some(&d) = self.drift.get(i) {
+                        q += v * (h * R::of(d));
+                    }
+                }
+                c.a = a;
+            }
+            Flow::Drift => {
+                for (i, &d) in self.drift.iter().enumerate() {
+                    q += v * (h * R::of(d));
+                    if let Some(&b) = self.kick.get(i) {
+                        v += scene.acceleration(&q) * (h * R::of(b));
+                    }
+                }
+            }
+        }
+        c.state = State::new(q, v);
+        Ok(())
+    }
+
+    fn state<R: Real, const D: usize>(&self, c: &WithAcceleration<R, D>, _: R) -> State<D, R> {
+        c.state
+    }
+}
+
+/// Euler-Cromer (symplectic Euler): `v' = v + h a(q)`, then `q' = q + h v'`.
+pub const EULER_CROMER: SplittingTable = SplittingTable::new(
+    SchemeMeta {
+        id: "euler-cromer",
+        name: "Euler-Cromer (symplectic Euler)",
+        order: 1,
+        symplectic: true,
+        symmetric: false,
+        reference: "A. Cromer, Am. J. Phys. 49, 455 (1981); course notes' Euler-Cromer method",
+        force_evaluations: 0, // derived by `new`
+        implicit: false,
+    },
+    Flow::Kick,
+    &[1.0],
+    &[1.0],
+);
+
+/// Velocity Verlet, kick-drift-kick: `v += h/2 a(q)`, `q += h v`, `v += h/2 a(q)`,
+/// with the last acceleration reused as the next step's first.
+pub const VELOCITY_VERLET: SplittingTable = SplittingTable::new(
+    SchemeMeta {
+        id: "velocity-verlet",
+        name: "velocity Verlet (kick-drift-kick)",
+        order: 2,
+        symplectic: true,
+        symmetric: true,
+        reference: "W. C. Swope et al., J. Chem. Phys. 76, 637 (1982); course notes' velocity Verlet",
+        force_evaluations: 0, // derived by `new`
+        implicit: false,
+    },
+    Flow::Kick,
+    &[1.0],
+    &[0.5, 0.5],
+);
+
+/// Position Verlet, drift-kick-drift: `q += h/2 v`, `v += h a(q)`, `q += h/2 v`.
+pub const POSITION_VERLET: SplittingTable = SplittingTable::new(
+    SchemeMeta {
+        id: "position-verlet",
+        name: "position Verlet (drift-kick-drift)",
+        order: 2,
+        symplectic: true,
+        symmetric: true,
+        reference: "E. Hairer, C. Lubich, G. Wanner, Geometric Numerical Integration (2006), I.3.1",
+        force_evaluations: 0, // derived by `new`
+        implicit: false,
+    },
+    Flow::Drift,
+    &[0.5, 0.5],
+    &[1.0],
+);
+
+/// Every splitting table of the catalogue, for tests that check tables.
+pub const TABLES: &[&SplittingTable] = &[&EULER_CROMER, &VELOCITY_VERLET, &POSITION_VERLET];

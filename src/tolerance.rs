@@ -1,0 +1,81 @@
+//! Every pass/fail bound and every threshold a study uses, each a formula with
+//! its reason, in one place.
+
+/// A state farther than this from the origin in phase space (length units,
+/// see [`crate::scene::Scene::phase_distance`]) has blown up: a million times
+/// the size of the motion is far beyond any bounded orbit yet far from
+/// overflow, so an unstable run is stopped within a few dozen steps of leaving
+/// the orbit instead of after it overflows.
+pub fn blow_up_bound(scale: f64) -> f64 {
+    1e6 * scale
+}
+
+/// Largest distance between measured and theoretical order that still passes.
+///
+/// Orders are integers, so 0.1 separates a correct scheme from one that lost
+/// or gained an order with a factor of ten to spare, while leaving room for
+/// the residual bias of a finite ladder on hard scenes.
+pub const ORDER_TOLERANCE: f64 = 0.1;
+
+/// Fewest rungs an order fit may use. The fit has four coefficients (see
+/// [`crate::measure::fit`]); six rungs leave two degrees of freedom for the
+/// interval, and a window shorter than that says too little to trust.
+pub const MIN_WINDOW: usize = 6;
+
+/// A rung whose error exceeds this fraction of the scene's size is not
+/// asymptotic: the error expansion `C h^p (1 + ...)` assumes the numerical
+/// orbit is a small perturbation of the exact one, and an error of a tenth of
+/// the orbit (a phase error of about 6 degrees) is where that stops being true.
+pub const ERROR_CEILING: f64 = 0.1;
+
+/// Once the error stops falling at the ladder's rate, rungs are at the
+/// round-off floor: a local order below this fraction of the ladder's median
+/// local order marks the first of them.
+pub const FLOOR_FRACTION: f64 = 0.5;
+
+/// A rung at either end of the window whose local order differs from the
+/// median local order by more than this (relative to the order, at least 1)
+/// is still pre-asymptotic (coarse end) or already touched by round-off (fine
+/// end). Smaller, steady deviations are the error expansion's next terms,
+/// which the fit models.
+pub fn plateau_tolerance(median_order: f64) -> f64 {
+    0.1 * median_order.abs().max(1.0)
+}
+
+/// The finest distinction between orders the harness claims to make.
+///
+/// On smooth exact-solution errors the fit's interval can shrink to 1e-6,
+/// narrower than effects no finite ladder removes: accumulated round-off moves
+/// the fitted order of the two-step Störmer-Verlet scheme on the oscillator by
+/// 4e-4 long before its error visibly stops falling. An interval is therefore
+/// never reported narrower than `order -+ 0.01`: a hundredth of an order is
+/// far below any order a scheme can lose, and far above what round-off and the
+/// expansion's remainder can fake.
+pub const ORDER_RESOLUTION: f64 = 0.01;
+
+/// The interval a verdict uses: the fit's 95% interval (Student's t on the
+/// standard error, plus the window's systematic), at least
+/// [`ORDER_RESOLUTION`] either side of the estimate.
+pub fn order_interval(order: f64, ci95: [f64; 2]) -> [f64; 2] {
+    [
+        ci95[0].min(order - ORDER_RESOLUTION),
+        ci95[1].max(order + ORDER_RESOLUTION),
+    ]
+}
+
+/// The verdict on a measured order: the theoretical order must lie in the
+/// interval and within [`ORDER_TOLERANCE`] of the estimate.
+pub fn order_verdict(theoretical: f64, measured: f64, interval: [f64; 2]) -> Result<(), String> {
+    if !(interval[0] <= theoretical && theoretical <= interval[1]) {
+        return Err(format!(
+            "theoretical order {theoretical} outside the measured interval [{:.4}, {:.4}]",
+            interval[0], interval[1]
+        ));
+    }
+    if (measured - theoretical).abs() > ORDER_TOLERANCE {
+        return Err(format!(
+            "measured order {measured:.4} is more than {ORDER_TOLERANCE} from {theoretical}"
+        ));
+    }
+    Ok(())
+}
