@@ -1,0 +1,106 @@
+//! The harness must catch schemes that do not do what they claim: each
+//! scheme here is a plausible bug, defined outside the crate through the
+//! public trait, and each must get a failing verdict with the right
+//! measured order.
+
+use stepladder::measure::order::{OrderSpec, Verdict, global_order};
+use stepladder::scene::{Harmonic, KeplerCircular, Scene};
+use stepladder::scheme::{
+    Flow, Leapfrog, Scheme, SchemeMeta, SplittingTable, StepFailure, VELOCITY_VERLET,
+};
+use stepladder::state::{Real, State};
+
+/// Velocity Verlet with the kick weights 0.6 / 0.4 instead of 1/2 / 1/2: still
+/// consistent and symplectic, but no longer symmetric, hence first order.
+const LOPSIDED_VERLET: SplittingTable = SplittingTable::new(
+    SchemeMeta {
+        id: "lopsided-verlet",
+        ..VELOCITY_VERLET.meta
+    },
+    Flow::Kick,
+    &[1.0],
+    &[0.6, 0.4],
+);
+
+/// Leap-frog that hands out its half-step velocity as if it were the
+/// whole-step one (the classic output bug): positions are second order, the
+/// reported velocities only first.
+struct UnsynchronisedLeapfrog;
+
+const UNSYNC_META: SchemeMeta = SchemeMeta {
+    id: "unsynchronised-leapfrog",
+    ..Leapfrog::META
+};
+
+impl Scheme for UnsynchronisedLeapfrog {
+    type Carry<R: Real, const D: usize> = <Leapfrog as Scheme>::Carry<R, D>;
+    fn meta(&self) -> &SchemeMeta {
+        &UNSYNC_META
+    }
+    fn start<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        s: &State<D, R>,
+        h: R,
+    ) -> Self::Carry<R, D> {
+        Leapfrog.start(scene, s, h)
+    }
+    fn step<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        c: &mut Self::Carry<R, D>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        Leapfrog.step(scene, c, h)
+    }
+    fn state<R: Real, const D: usize>(&self, c: &Self::Carry<R, D>, _: R) -> State<D, R> {
+        State::new(c.q, c.v_half)
+    }
+}
+
+fn assert_caught<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S, true_order: f64) {
+    let r = global_order(scheme, scene, &OrderSpec::default()).unwrap();
+    assert_eq!(
+        r.verdict,
+        Verdict::Fail,
+        "{} on {} passed: {}",
+        r.scheme,
+        r.scene,
+        r.reason
+    );
+    let p = r.measured_order.expect("the order is still measured");
+    assert!(
+        (p - true_order).abs() < 0.05,
+        "{} on {}: measured {p}, expected {true_order}",
+        r.scheme,
+        r.scene
+    );
+}
+
+#[test]
+fn wrong_kick_weights_are_measured_first_order_and_fail() {
+    assert_caught(&LOPSIDED_VERLET, &Harmonic::default(), 1.0);
+    assert_caught(&LOPSIDED_VERLET, &KeplerCircular, 1.0);
+}
+
+#[test]
+fn unsynchronised_leapfrog_velocities_are_measured_first_order_and_fail() {
+    assert_caught(&UnsynchronisedLeapfrog, &Harmonic::default(), 1.0);
+    assert_caught(&UnsynchronisedLeapfrog, &KeplerCircular, 1.0);
+}
+
+/// A correct scheme whose metadata overclaims is caught as well.
+#[test]
+fn an_overclaimed_order_fails() {
+    const OVERCLAIMED: SplittingTable = SplittingTable::new(
+        SchemeMeta {
+            id: "overclaimed-verlet",
+            order: 3,
+            ..VELOCITY_VERLET.meta
+        },
+        Flow::Kick,
+        &[1.0],
+        &[0.5, 0.5],
+    );
+    assert_caught(&OVERCLAIMED, &KeplerCircular, 2.0);
+}

@@ -1,0 +1,156 @@
+//! The catalogue against its own claims, on every built-in scene.
+
+use stepladder::measure::order::OrderSpec;
+use stepladder::run::integrate;
+use stepladder::scene::{Counted, Harmonic, KeplerCircular, Scene};
+use stepladder::scheme::{
+    Flow, POSITION_VERLET, Scheme, SchemeVisitor, TABLES, VELOCITY_VERLET, catalogue, scheme_ids,
+    visit_scheme,
+};
+use stepladder::suite::all_cases;
+
+#[test]
+fn every_scheme_has_its_claimed_order_on_every_scene() {
+    let failures: Vec<String> = all_cases()
+        .iter()
+        .map(|c| c.order(&OrderSpec::default()).unwrap())
+        .filter(|r| !r.passed())
+        .map(|r| format!("{} on {}: {}", r.scheme, r.scene, r.reason))
+        .collect();
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn registry_ids_are_unique_kebab_case_and_documented() {
+    let ids = scheme_ids();
+    let mut sorted = ids.clone();
+    sorted.sort();
+    sorted.dedup();
+    assert_eq!(sorted.len(), ids.len(), "duplicate ids in {ids:?}");
+    for m in catalogue() {
+        assert!(
+            !m.id.is_empty()
+                && m.id.split('-').all(|w| !w.is_empty()
+                    && w.chars()
+                        .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit())),
+            "{} is not kebab-case",
+            m.id
+        );
+        assert!(
+            !m.name.is_empty() && !m.reference.is_empty(),
+            "{} lacks a name or reference",
+            m.id
+        );
+        assert!(m.order >= 1 && m.force_evaluations >= 1, "{}", m.id);
+    }
+}
+
+/// Force evaluations spent by `start` alone, and by `start` plus `steps` steps.
+fn evaluations<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: S,
+    steps: u64,
+) -> (u64, u64) {
+    let scene = Counted::new(scene);
+    let _ = scheme.start(&scene, &scene.initial(), 0.01);
+    let start = scene.evaluations();
+    scene.reset();
+    integrate(scheme, &scene, &scene.initial(), 0.01, steps, |_, _, _| {});
+    (start, scene.evaluations())
+}
+
+struct CountForces;
+impl SchemeVisitor for CountForces {
+    type Output = ();
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) {
+        let meta = scheme.meta();
+        let steps = 1000;
+        for (start, total) in [
+            evaluations(scheme, Harmonic::default(), steps),
+            evaluations(scheme, KeplerCircular, steps),
+        ] {
+            assert_eq!(
+                total - start,
+                steps * meta.force_evaluations as u64,
+                "{} claims {} force evaluations per step",
+                meta.id,
+                meta.force_evaluations
+            );
+            assert!(
+                start <= 1,
+                "{} spends {start} evaluations starting",
+                meta.id
+            );
+        }
+    }
+}
+
+#[test]
+fn force_evaluations_per_step_match_the_metadata() {
+    for id in scheme_ids() {
+        visit_scheme(id, CountForces).unwrap();
+    }
+}
+
+/// Starting and reading back the state must give the state started from:
+/// the synchronised output of a staggered or two-step scheme included.
+struct StartIsSynchronised;
+impl SchemeVisitor for StartIsSynchronised {
+    type Output = ();
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) {
+        let scene = KeplerCircular;
+        let s0 = scene.initial();
+        for h in [0.1, 1e-3] {
+            let back = scheme.state(&scheme.start(&scene, &s0, h), h);
+            assert!(
+                scene.phase_distance(&back, &s0) < 1e-13,
+                "{} reads back {back:?} from {s0:?}",
+                scheme.meta().id
+            );
+        }
+    }
+}
+
+#[test]
+fn state_read_back_after_start_is_the_initial_state() {
+    for id in scheme_ids() {
+        visit_scheme(id, StartIsSynchronised).unwrap();
+    }
+}
+
+#[test]
+fn splitting_tables_are_consistent_and_their_symmetry_claims_hold() {
+    for t in TABLES {
+        // consistency (order >= 1): each flow advances a full step in total
+        let drift: f64 = t.drift.iter().sum();
+        let kick: f64 = t.kick.iter().sum();
+        assert!(
+            (drift - 1.0).abs() < 1e-15 && (kick - 1.0).abs() < 1e-15,
+            "{}",
+            t.meta.id
+        );
+        // a palindromic sequence of flows is time-symmetric, and only then
+        let seq = t.sequence();
+        let palindrome = seq
+            .iter()
+            .zip(seq.iter().rev())
+            .all(|(a, b)| a.0 == b.0 && (a.1 - b.1).abs() < 1e-15);
+        assert_eq!(palindrome, t.meta.symmetric, "{}", t.meta.id);
+        assert!(
+            t.meta.symplectic,
+            "every splitting is symplectic: {}",
+            t.meta.id
+        );
+    }
+    assert_eq!(VELOCITY_VERLET.first, Flow::Kick);
+    assert!(VELOCITY_VERLET.reuses_acceleration());
+    assert!(!POSITION_VERLET.reuses_acceleration());
+}
+
+#[test]
+fn every_splitting_table_is_in_the_catalogue() {
+    let ids = scheme_ids();
+    for t in TABLES {
+        assert!(ids.contains(&t.meta.id), "{} is not registered", t.meta.id);
+    }
+}

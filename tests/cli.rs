@@ -1,0 +1,183 @@
+//! The command line: JSON shapes, exit statuses, and a clear one-line error
+//! for every kind of bad input, with nothing written.
+
+use serde_json::Value;
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stepladder"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn json(args: &[&str]) -> Value {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Bad input: exit status 2, nothing on stdout, one line on stderr that
+/// contains `needle`.
+fn refused(args: &[&str], needle: &str) {
+    let out = run(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(out.stdout.is_empty(), "{args:?} printed to stdout");
+    assert!(err.contains(needle), "{args:?}: {err:?} lacks {needle:?}");
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "{args:?}: not one line: {err}"
+    );
+}
+
+#[test]
+fn list_json_has_schemes_and_scenes() {
+    let v = json(&["list", "--json"]);
+    let schemes = v["schemes"].as_array().unwrap();
+    assert!(schemes.len() >= 6);
+    for s in schemes {
+        assert!(s["id"].is_string() && s["order"].is_u64());
+        assert!(s["symplectic"].is_boolean() && s["symmetric"].is_boolean());
+    }
+    let ids: Vec<&str> = v["scenes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["id"].as_str().unwrap())
+        .collect();
+    assert!(ids.contains(&"harmonic") && ids.contains(&"kepler-circular"));
+}
+
+#[test]
+fn order_json_has_the_record() {
+    let v = json(&[
+        "order",
+        "--scheme",
+        "velocity-verlet",
+        "--scene",
+        "kepler-circular",
+        "--json",
+    ]);
+    assert_eq!(v["scheme"], "velocity-verlet");
+    assert_eq!(v["scene"], "kepler-circular");
+    assert_eq!(v["theoretical_order"], 2);
+    assert_eq!(v["verdict"], "pass");
+    let p = v["measured_order"].as_f64().unwrap();
+    let ci: Vec<f64> = v["ci95"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!(ci.len() == 2 && ci[0] <= p && p <= ci[1]);
+    for r in v["rungs"].as_array().unwrap() {
+        for key in ["h", "steps", "error", "final_error", "local_order", "used"] {
+            assert!(r.get(key).is_some(), "rung lacks {key}");
+        }
+    }
+}
+
+#[test]
+fn fixed_ladder_from_the_command_line() {
+    let v = json(&[
+        "order",
+        "--scheme",
+        "euler-cromer",
+        "--scene",
+        "harmonic",
+        "--h0",
+        "0.05",
+        "--levels",
+        "8",
+        "--ratio",
+        "0.5",
+        "--t-end",
+        "7.3",
+        "--json",
+    ]);
+    let rungs = v["rungs"].as_array().unwrap();
+    assert_eq!(rungs.len(), 8);
+    assert_eq!(rungs[0]["steps"], 146);
+    assert_eq!(v["t_end"], 7.3);
+}
+
+#[test]
+fn a_failing_verdict_exits_with_status_1() {
+    // six rungs refining by 0.9 are too close together to show the order
+    let out = run(&[
+        "order", "--scheme", "euler", "--scene", "harmonic", "--h0", "1", "--levels", "6",
+        "--ratio", "0.9",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("FAIL"));
+}
+
+#[test]
+fn bad_input_is_refused_with_a_one_line_message() {
+    fn order<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+        let mut a = vec![
+            "order",
+            "--scheme",
+            "velocity-verlet",
+            "--scene",
+            "harmonic",
+        ];
+        a.extend_from_slice(extra);
+        a
+    }
+    refused(
+        &["order", "--scheme", "rk9", "--scene", "harmonic"],
+        "valid schemes: euler, euler-cromer",
+    );
+    refused(
+        &["order", "--scheme", "euler", "--scene", "mars"],
+        "valid scenes: harmonic, kepler-circular",
+    );
+    refused(&order(&["--h0", "-0.1"]), "h0 = -0.1 is invalid");
+    refused(&order(&["--h0", "0"]), "h0 = 0 is invalid");
+    refused(&order(&["--h0", "nan"]), "h0 = NaN is invalid");
+    refused(&order(&["--t-end", "inf"]), "t_end = inf is invalid");
+    refused(&order(&["--t-end", "-2"]), "t_end = -2 is invalid");
+    refused(&order(&["--ratio", "1.5"]), "ratio = 1.5 is invalid");
+    refused(
+        &order(&["--levels", "2"]),
+        "2 rungs cannot measure an order",
+    );
+    refused(
+        &order(&["--h0", "1e-9", "--levels", "8"]),
+        "refusing a run of",
+    );
+    refused(&order(&["--h0", "abc"]), "invalid value 'abc'");
+    refused(&["order", "--scene", "harmonic"], "--scheme");
+    refused(&["report", "--threads", "0"], "threads = 0 is invalid");
+    refused(&["frobnicate"], "unrecognized subcommand");
+}
+
+#[test]
+fn report_writes_where_told_and_refuses_an_unwritable_path() {
+    let dir = std::env::temp_dir().join(format!("stepladder-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("R.md");
+    let out = run(&["report", "--output", path.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        std::fs::read_to_string(&path)
+            .unwrap()
+            .starts_with("# stepladder report")
+    );
+    let missing = dir.join("no/such/dir/R.md");
+    let out = run(&["report", "--output", missing.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!missing.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,74 @@
+//! The order measurement itself: it must not be fooled by special end times
+//! or ladders, and it must use the steps actually run.
+
+use stepladder::ladder::{Ladder, LadderChoice};
+use stepladder::measure::order::{OrderSpec, global_order};
+use stepladder::run::integrate;
+use stepladder::scene::{Harmonic, Scene};
+use stepladder::scheme::{EULER_CROMER, VELOCITY_VERLET};
+
+/// Euler-Cromer's positions are leap-frog's started with a velocity off by
+/// `h a0 / 2`; that O(h) error is `sin(w t)`-shaped and vanishes at every
+/// whole period, where leap-frog's own phase error also drops out of `x` to
+/// first order. A position-only error at `t_end = period` therefore falls
+/// like `h^3` and would report a first-order scheme as third order.
+#[test]
+fn a_whole_period_end_time_does_not_fake_a_higher_order() {
+    let osc = Harmonic::default();
+    let t_end = osc.period();
+    let position_error_at_end = |steps: u64| {
+        let mut last = 0.0;
+        integrate(
+            &EULER_CROMER,
+            &osc,
+            &osc.initial(),
+            t_end / steps as f64,
+            steps,
+            |_, _, s| last = s.q[0],
+        );
+        (last - osc.exact(t_end).unwrap().q[0]).abs()
+    };
+    let trap = (position_error_at_end(2000) / position_error_at_end(4000)).log2();
+    assert!(
+        trap > 2.9,
+        "the trap is real: position-only local order {trap}"
+    );
+
+    let r = global_order(
+        &EULER_CROMER,
+        &osc,
+        &OrderSpec {
+            t_end: Some(t_end),
+            ..OrderSpec::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        (r.measured_order.unwrap() - 1.0).abs() < 0.01,
+        "{}",
+        r.reason
+    );
+    assert!(r.passed(), "{}", r.reason);
+}
+
+#[test]
+fn a_non_nested_ladder_is_fitted_with_the_steps_actually_run() {
+    let spec = OrderSpec {
+        t_end: None,
+        ladder: LadderChoice::Fixed(Ladder::new(0.3, 0.6, 14).unwrap()),
+    };
+    let r = global_order(&VELOCITY_VERLET, &Harmonic::default(), &spec).unwrap();
+    assert!(r.passed(), "{}", r.reason);
+    for g in &r.rungs {
+        assert!((g.h * g.steps as f64 - r.t_end).abs() < 1e-12 * r.t_end);
+    }
+}
+
+#[test]
+fn the_order_does_not_depend_on_the_oscillator_parameters() {
+    for (w0, x0, v0) in [(5.0, 1.0, 0.0), (0.2, -3.0, 1.0), (40.0, 0.0, 2.0)] {
+        let osc = Harmonic::new(w0, x0, v0).unwrap();
+        let r = global_order(&VELOCITY_VERLET, &osc, &OrderSpec::default()).unwrap();
+        assert!(r.passed(), "w0 = {w0}: {}", r.reason);
+    }
+}

@@ -1,0 +1,41 @@
+//! REPORT.md is generated, never hand-edited: its deterministic part must be
+//! what the current code produces, and writing it must never lose the old one.
+
+use std::path::PathBuf;
+use stepladder::report::{deterministic, deterministic_part, write_atomically};
+use stepladder::suite::run_suite;
+
+#[test]
+fn committed_report_is_up_to_date() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("REPORT.md");
+    let committed = std::fs::read_to_string(&path).expect("REPORT.md is committed");
+    let fresh = deterministic(&run_suite(2, &|_, _, _| {}).unwrap());
+    assert!(
+        deterministic_part(&committed) == fresh,
+        "REPORT.md is stale: regenerate it with `cargo run --release`"
+    );
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let one = deterministic(&run_suite(1, &|_, _, _| {}).unwrap());
+    let four = deterministic(&run_suite(4, &|_, _, _| {}).unwrap());
+    assert!(one == four);
+}
+
+#[test]
+fn a_failed_write_leaves_the_previous_report_intact() {
+    let dir = std::env::temp_dir().join(format!("stepladder-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("REPORT.md");
+    write_atomically(&path, "old").unwrap();
+    // a directory where the temporary file would go makes the write fail
+    let blocker = dir.join(format!(".REPORT.md.tmp-{}", std::process::id()));
+    std::fs::create_dir_all(&blocker).unwrap();
+    assert!(write_atomically(&path, "new").is_err());
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+    std::fs::remove_dir_all(&blocker).unwrap();
+    write_atomically(&path, "new").unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
