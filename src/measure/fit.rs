@@ -230,7 +230,9 @@ mod tests {
 
     /// A uniform deviate in [-1, 1) from a 64-bit linear congruential generator.
     fn uniform(state: &mut u64) -> f64 {
-        *state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (*state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 
@@ -255,7 +257,10 @@ mod tests {
                 fit.ci95[0] <= 4.0 && 4.0 <= fit.ci95[1]
             })
             .count();
-        assert!(covered as f64 >= 0.93 * trials as f64, "covered {covered} of {trials}");
+        assert!(
+            covered as f64 >= 0.93 * trials as f64,
+            "covered {covered} of {trials}"
+        );
     }
 
     #[test]
