@@ -33,13 +33,21 @@ pub const ERROR_CEILING: f64 = 0.1;
 /// local order marks the first of them.
 pub const FLOOR_FRACTION: f64 = 0.5;
 
-/// A rung at either end of the window whose local order differs from the
-/// median local order by more than this (relative to the order, at least 1)
-/// is still pre-asymptotic (coarse end) or already touched by round-off (fine
-/// end). Smaller, steady deviations are the error expansion's next terms,
-/// which the fit models.
-pub fn plateau_tolerance(median_order: f64) -> f64 {
+/// A rung at the coarse end of the window whose local order differs from
+/// the median local order by more than this is still pre-asymptotic. The
+/// bound is loose (10% of the order, at least 0.1) because smaller, steady
+/// deviations are the error expansion's next terms, which the fit models.
+pub fn pre_asymptotic_tolerance(median_order: f64) -> f64 {
     0.1 * median_order.abs().max(1.0)
+}
+
+/// A rung at the fine end of the window whose local order differs from the
+/// median by more than this is touched by round-off. The bound is tight (2%
+/// of the order, at least 0.02) because the fit does not model round-off: a
+/// floor `f / h` that is 1.5% of the error at the finest rung already lowers
+/// its local order by about `(p + 1) 1.5%`, and rungs beyond that bias `p`.
+pub fn round_off_tolerance(median_order: f64) -> f64 {
+    0.02 * median_order.abs().max(1.0)
 }
 
 /// The finest distinction between orders the harness claims to make.

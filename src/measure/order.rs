@@ -329,9 +329,10 @@ impl WindowChoice {
 ///    is kept;
 /// 2. the first rung whose local order falls below [`FLOOR_FRACTION`] of the
 ///    median local order, and every finer one, sit on the round-off floor;
-/// 3. rungs at either end whose local order strays from the median by more
-///    than [`tolerance::plateau_tolerance`] are pre-asymptotic (coarse end)
-///    or touched by round-off (fine end).
+/// 3. rungs at the fine end whose local order strays from the median by more
+///    than [`tolerance::round_off_tolerance`] are touched by round-off, and
+///    rungs at the coarse end straying by more than
+///    [`tolerance::pre_asymptotic_tolerance`] are pre-asymptotic.
 pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
     let mut dropped: Vec<Option<DropReason>> = data
         .iter()
@@ -393,12 +394,13 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
             ..none(dropped)
         };
     }
-    let delta = tolerance::plateau_tolerance(median);
-    while b > a && (local(b) - median).abs() > delta {
+    let fine = tolerance::round_off_tolerance(median);
+    while b > a && (local(b) - median).abs() > fine {
         dropped[b] = Some(DropReason::RoundOff);
         b -= 1;
     }
-    while a < b && (local(a + 1) - median).abs() > delta {
+    let coarse = tolerance::pre_asymptotic_tolerance(median);
+    while a < b && (local(a + 1) - median).abs() > coarse {
         dropped[a] = Some(DropReason::PreAsymptotic);
         a += 1;
     }

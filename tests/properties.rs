@@ -1,0 +1,56 @@
+//! Properties over random inputs: the window and the fit recover any power
+//! law they are given, and a correct scheme passes on any oscillator.
+
+use proptest::prelude::*;
+use stepladder::measure::fit::order_fit;
+use stepladder::measure::order::{OrderSpec, global_order, select_window};
+use stepladder::scene::Harmonic;
+use stepladder::scheme::VELOCITY_VERLET;
+use stepladder::tolerance::{order_interval, order_verdict};
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Errors `C h^p (1 + r h / h0)` plus a round-off floor `f / h`, on the
+    /// automatic ladder's ratio from `h0` where the error is 3% of the orbit:
+    /// the window must stop above the floor and the verdict must accept `p`.
+    #[test]
+    fn window_and_fit_recover_a_power_law_above_a_floor(
+        p in 1.0f64..8.0,
+        log_c in -3.0f64..3.0,
+        r in -0.3f64..0.3,
+        floor in 1e-17f64..1e-15,
+    ) {
+        let c = 10f64.powf(log_c);
+        let h0 = (0.03 / c).powf(1.0 / p);
+        let ratio = 2f64.powf(-2.0 / p);
+        let data: Vec<(f64, Option<f64>)> = (0..60)
+            .map(|k| h0 * ratio.powi(k))
+            .map(|h| (h, Some(c * h.powf(p) * (1.0 + r * h / h0) + floor / h)))
+            .collect();
+        let choice = select_window(&data, 1.0);
+        let (a, b) = choice.window.expect("a window exists");
+        let pts: Vec<(f64, f64)> = data[a..=b].iter().map(|&(h, e)| (h, e.unwrap())).collect();
+        let fit = order_fit(&pts).expect("a fit exists");
+        let verdict = order_verdict(p, fit.order, order_interval(fit.order, fit.ci95));
+        prop_assert!(verdict.is_ok(), "p = {p}, {verdict:?}: {fit:?} over {a}..{b}");
+        // the last fitted rung is still well above the floor
+        let (h, e) = pts[pts.len() - 1];
+        prop_assert!(e > 10.0 * floor / h, "rung {b} at e = {e} is on the floor {}", floor / h);
+    }
+
+    /// Velocity Verlet is second order on any oscillator, whatever its
+    /// frequency, amplitude and phase: the measured order must not depend on
+    /// the units of time and length.
+    #[test]
+    fn velocity_verlet_passes_on_any_oscillator(
+        w0 in 0.01f64..100.0,
+        x0 in -10.0f64..10.0,
+        v0 in -10.0f64..10.0,
+    ) {
+        prop_assume!(x0.abs() + v0.abs() > 1e-3);
+        let osc = Harmonic::new(w0, x0, v0).unwrap();
+        let r = global_order(&VELOCITY_VERLET, &osc, &OrderSpec::default()).unwrap();
+        prop_assert!(r.passed(), "w0 = {w0}, x0 = {x0}, v0 = {v0}: {}", r.reason);
+    }
+}
