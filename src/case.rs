@@ -4,7 +4,10 @@
 //! dynamic dispatch is the one call that starts a study.
 
 use crate::error::Error;
+use crate::measure::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::measure::order::{OrderRecord, OrderSpec, global_order};
+use crate::measure::reverse::{ReverseRecord, ReverseSpec, reversibility};
+use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
 use crate::scene::{AnyScene, Scene, SceneMeta, SceneVisitor};
 use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor, visit_scheme};
 
@@ -16,6 +19,12 @@ pub trait Case: Send + Sync {
     fn scene(&self) -> SceneMeta;
     /// The global order study.
     fn order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error>;
+    /// The long-run energy study.
+    fn energy(&self, spec: &EnergySpec) -> Result<EnergyRecord, Error>;
+    /// The tangent-map study.
+    fn symplectic(&self, spec: &SymplecticSpec) -> Result<SymplecticRecord, Error>;
+    /// The forward-and-back study.
+    fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error>;
 }
 
 /// A scheme and a `D`-dimensional scene of concrete types.
@@ -40,6 +49,15 @@ where
     }
     fn order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error> {
         global_order(self.scheme, &self.scene, spec)
+    }
+    fn energy(&self, spec: &EnergySpec) -> Result<EnergyRecord, Error> {
+        energy_drift(self.scheme, &self.scene, spec)
+    }
+    fn symplectic(&self, spec: &SymplecticSpec) -> Result<SymplecticRecord, Error> {
+        symplecticity(self.scheme, &self.scene, spec)
+    }
+    fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error> {
+        reversibility(self.scheme, &self.scene, spec)
     }
 }
 

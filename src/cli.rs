@@ -5,7 +5,11 @@
 use crate::case::case;
 use crate::error::Error;
 use crate::ladder::{AUTO_START, Ladder, LadderChoice};
+use crate::measure::Verdict;
+use crate::measure::energy::EnergySpec;
 use crate::measure::order::{OrderRecord, OrderSpec};
+use crate::measure::reverse::ReverseSpec;
+use crate::measure::symplectic::SymplecticSpec;
 use crate::report;
 use crate::scene::AnyScene;
 use crate::scheme::catalogue;
@@ -38,6 +42,65 @@ enum Command {
     /// Measure the global order of one scheme on one scene over a ladder of
     /// step sizes (exit status 1 when the verdict fails).
     Order(OrderArgs),
+    /// Run one scheme for a long time and classify how its energy error grows.
+    Energy(EnergyArgs),
+    /// Take the exact tangent map of one step and test it for symplecticity.
+    Symplectic(SymplecticArgs),
+    /// Run forward, then back with -h, and measure how far from the start it ends.
+    Reverse(ReverseArgs),
+}
+
+/// The scheme and scene every single-case study takes.
+#[derive(Debug, Args)]
+struct CaseArgs {
+    /// Scheme id (see `stepladder list`).
+    #[arg(long)]
+    scheme: String,
+    /// Scene id (see `stepladder list`).
+    #[arg(long)]
+    scene: String,
+    /// Print the record as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+impl CaseArgs {
+    fn case(&self) -> Result<Box<dyn crate::case::Case>, Error> {
+        case(&self.scheme, &AnyScene::by_id(&self.scene)?)
+    }
+}
+
+#[derive(Debug, Args)]
+struct EnergyArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+    /// Step size (default: 1/100 of a period).
+    #[arg(long, allow_negative_numbers = true)]
+    h: Option<f64>,
+    /// Length of the run in periods (default 10000).
+    #[arg(long, allow_negative_numbers = true)]
+    periods: Option<f64>,
+}
+
+#[derive(Debug, Args)]
+struct SymplecticArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+    /// Step size (default: 1/10, 1/30 and 1/100 of a period).
+    #[arg(long, allow_negative_numbers = true)]
+    h: Option<f64>,
+}
+
+#[derive(Debug, Args)]
+struct ReverseArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+    /// Step size (default: 1/100 of a period).
+    #[arg(long, allow_negative_numbers = true)]
+    h: Option<f64>,
+    /// Steps each way (default 1000).
+    #[arg(long)]
+    steps: Option<u64>,
 }
 
 #[derive(Debug, Args)]
@@ -125,7 +188,76 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Order(args) => order(&args),
+        Command::Energy(a) => {
+            let r = a.case.case()?.energy(&EnergySpec {
+                h: a.h,
+                periods: a.periods,
+            })?;
+            let text = format!(
+                "{} on {}: h = {}, {} steps, max relative energy error {:.3e}, g = {}, {}",
+                r.scheme,
+                r.scene,
+                r.h,
+                r.steps,
+                r.max_relative_energy_error,
+                r.growth_exponent.map_or("-".into(), |g| format!("{g:.3}")),
+                r.reason
+            );
+            emit(a.case.json, &r, &text, r.verdict)
+        }
+        Command::Symplectic(a) => {
+            let r = a.case.case()?.symplectic(&SymplecticSpec { h: a.h })?;
+            let text = format!(
+                "{} on {}: det(J) - 1 = {:.3e}, symplectic residual {:.3e} over {} samples: {}",
+                r.scheme,
+                r.scene,
+                r.det_minus_one,
+                r.symplectic_residual,
+                r.samples.len(),
+                r.reason
+            );
+            emit(a.case.json, &r, &text, r.verdict)
+        }
+        Command::Reverse(a) => {
+            let r = a.case.case()?.reverse(&ReverseSpec {
+                h: a.h,
+                steps: a.steps,
+            })?;
+            let text = format!(
+                "{} on {}: {} steps of {} and back, return error {}: {}",
+                r.scheme,
+                r.scene,
+                r.steps,
+                r.h,
+                r.return_error.map_or("-".into(), |e| format!("{e:.3e}")),
+                r.reason
+            );
+            emit(a.case.json, &r, &text, r.verdict)
+        }
     }
+}
+
+/// Prints a record as JSON or as its one-line summary; exit status from its verdict.
+fn emit<T: Serialize>(
+    json: bool,
+    record: &T,
+    text: &str,
+    verdict: Verdict,
+) -> Result<ExitCode, Error> {
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(record).expect("plain data serialises")
+        );
+    } else {
+        let mark = if verdict == Verdict::Pass {
+            "PASS"
+        } else {
+            "FAIL"
+        };
+        println!("{mark}: {text}");
+    }
+    Ok(exit_for(verdict == Verdict::Pass))
 }
 
 fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
@@ -153,20 +285,16 @@ fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
         eprintln!();
     }
     report::write_atomically(&args.output, &report::render(&records))?;
-    print!("{}", report::order_table(&records.order));
-    let failed = records.order.iter().filter(|r| !r.passed()).count();
+    print!("{}", report::order_table(&records.order()));
+    println!();
+    print!("{}", report::geometry_table(&records.cases));
+    let (passed, total) = records.verdicts();
     println!(
-        "\n{} of {} verdicts pass; report written to {} in {:.1} s",
-        records.order.len() - failed,
-        records.order.len(),
+        "\n{passed} of {total} verdicts pass; report written to {} in {:.1} s",
         args.output.display(),
         records.total.as_secs_f64()
     );
-    Ok(if failed == 0 {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
-    })
+    Ok(exit_for(passed == total))
 }
 
 #[derive(Serialize)]
@@ -243,11 +371,15 @@ fn order(args: &OrderArgs) -> Result<ExitCode, Error> {
     } else {
         print_order(&record);
     }
-    Ok(if record.passed() {
+    Ok(exit_for(record.passed()))
+}
+
+fn exit_for(passed: bool) -> ExitCode {
+    if passed {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
-    })
+    }
 }
 
 fn print_order(r: &OrderRecord) {

@@ -4,28 +4,75 @@
 
 use crate::case::{Case, case};
 use crate::error::Error;
+use crate::measure::Verdict;
+use crate::measure::energy::{EnergyRecord, EnergySpec};
 use crate::measure::order::{OrderRecord, OrderSpec};
-use crate::scene::AnyScene;
-use crate::scheme::scheme_ids;
+use crate::measure::phase::{PhaseRecord, phase_error};
+use crate::measure::reverse::{ReverseRecord, ReverseSpec};
+use crate::measure::scene_check::{SceneCheck, check_scene};
+use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec};
+use crate::scene::{AnyScene, Scene, SceneVisitor};
+use crate::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-/// Every record of a suite run, in catalogue-major, scene-minor order.
+/// Every record of one scheme on one scene.
+#[derive(Clone, Debug)]
+pub struct CaseRecords {
+    /// Global order.
+    pub order: OrderRecord,
+    /// Energy over a long run.
+    pub energy: EnergyRecord,
+    /// Tangent map.
+    pub symplectic: SymplecticRecord,
+    /// Forward and back.
+    pub reverse: ReverseRecord,
+    /// Wall time of the case's studies (machine-dependent).
+    pub time: Duration,
+}
+
+/// Every record of a suite run.
 #[derive(Clone, Debug)]
 pub struct SuiteRecords {
-    /// One order record per scheme and scene.
-    pub order: Vec<OrderRecord>,
-    /// Wall time of each case's studies (machine-dependent), same order.
-    pub timings: Vec<Duration>,
+    /// One entry per scheme and scene, catalogue-major, scene-minor.
+    pub cases: Vec<CaseRecords>,
+    /// Phase error on the oscillator, one per scheme.
+    pub phase: Vec<PhaseRecord>,
+    /// The check of every scene.
+    pub scenes: Vec<SceneCheck>,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
     pub threads: usize,
 }
 
-/// Where a worker leaves one case's result.
-type Slot = Mutex<Option<Result<(OrderRecord, Duration), Error>>>;
+impl SuiteRecords {
+    /// The order records, in case order.
+    pub fn order(&self) -> Vec<&OrderRecord> {
+        self.cases.iter().map(|c| &c.order).collect()
+    }
+
+    /// `(passed, total)` over every verdict of the suite (phase records
+    /// without an analytic value have none).
+    pub fn verdicts(&self) -> (usize, usize) {
+        let mut all: Vec<Verdict> = Vec::new();
+        for c in &self.cases {
+            all.extend([
+                c.order.verdict,
+                c.energy.verdict,
+                c.symplectic.verdict,
+                c.reverse.verdict,
+            ]);
+        }
+        all.extend(self.phase.iter().filter_map(|p| p.verdict));
+        all.extend(self.scenes.iter().map(|s| s.verdict));
+        (
+            all.iter().filter(|v| **v == Verdict::Pass).count(),
+            all.len(),
+        )
+    }
+}
 
 /// Every catalogue scheme bound to every built-in scene.
 pub fn all_cases() -> Vec<Box<dyn Case>> {
@@ -39,6 +86,21 @@ pub fn all_cases() -> Vec<Box<dyn Case>> {
         })
         .collect()
 }
+
+/// Runs every study of one case with default settings.
+pub fn run_case(c: &dyn Case) -> Result<CaseRecords, Error> {
+    let t = Instant::now();
+    Ok(CaseRecords {
+        order: c.order(&OrderSpec::default())?,
+        energy: c.energy(&EnergySpec::default())?,
+        symplectic: c.symplectic(&SymplecticSpec::default())?,
+        reverse: c.reverse(&ReverseSpec::default())?,
+        time: t.elapsed(),
+    })
+}
+
+/// Where a worker leaves one case's result.
+type Slot = Mutex<Option<Result<CaseRecords, Error>>>;
 
 /// Runs the suite on `threads` threads (at least one), calling
 /// `progress(done, total, case)` as each case finishes.
@@ -58,8 +120,7 @@ pub fn run_suite(
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(c) = cases.get(i) else { break };
-                    let t = Instant::now();
-                    let result = c.order(&OrderSpec::default()).map(|r| (r, t.elapsed()));
+                    let result = run_case(c.as_ref());
                     *slots[i].lock().expect("no panics while holding the lock") = Some(result);
                     progress(
                         done.fetch_add(1, Ordering::Relaxed) + 1,
@@ -70,22 +131,45 @@ pub fn run_suite(
             });
         }
     });
-    let mut order = Vec::with_capacity(cases.len());
-    let mut timings = Vec::with_capacity(cases.len());
-    for slot in slots {
-        let (record, time) = slot
-            .into_inner()
-            .expect("no poisoned lock")
-            .expect("every case ran")?;
-        order.push(record);
-        timings.push(time);
-    }
+    let cases = slots
+        .into_iter()
+        .map(|slot| {
+            slot.into_inner()
+                .expect("no poisoned lock")
+                .expect("every case ran")
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    let phase = scheme_ids()
+        .into_iter()
+        .map(|id| visit_scheme(id, PhaseOf).expect("catalogue ids are valid"))
+        .collect();
+    let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
     Ok(SuiteRecords {
-        order,
-        timings,
+        cases,
+        phase,
+        scenes,
         total: start.elapsed(),
         threads,
     })
+}
+
+struct PhaseOf;
+impl SchemeVisitor for PhaseOf {
+    type Output = PhaseRecord;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> PhaseRecord {
+        phase_error(scheme)
+    }
+}
+
+struct CheckOf;
+impl SceneVisitor for CheckOf {
+    type Output = SceneCheck;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        scene: &S,
+    ) -> SceneCheck {
+        check_scene(scene)
+    }
 }
 
 /// Threads to use by default: what the machine offers.

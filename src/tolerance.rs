@@ -87,3 +87,64 @@ pub fn order_verdict(theoretical: f64, measured: f64, interval: [f64; 2]) -> Res
     }
     Ok(())
 }
+
+/// Largest symplectic residual `max |J^T Omega J - Omega|` (in the scaled
+/// coordinates `(q, v / w)`, where `J` has entries of order one) that counts
+/// as round-off. A step of `s` stages rounds each entry of `J` at about
+/// `s eps`, 1e-15 to 1e-14 for the catalogue; 1e-12 leaves a factor of 100,
+/// and the smallest defect of a non-symplectic scheme at the default steps
+/// (RK4 at `h w = 2 pi / 100`: `z^6 / 72 = 8.6e-10`) is a thousand times larger.
+pub const SYMPLECTIC_TOLERANCE: f64 = 1e-12;
+
+/// Largest return error, in units of `eps * scale`, that counts as round-off
+/// after `steps` steps forward and back. Each step rounds the state at about
+/// one unit; along an orbit those errors accumulate at most linearly in the
+/// number of steps, so `2 steps` units, with a factor 8 for the several
+/// roundings a step makes. A scheme that is not time-symmetric misses by its
+/// local error, `h^(p+1)` per step, orders of magnitude more at the default
+/// step.
+pub fn reverse_tolerance_ulps(steps: u64) -> f64 {
+    16.0 * steps as f64
+}
+
+/// A relative energy error beyond this means the orbit is destroyed (for the
+/// circular orbit, 10% of the binding energy): the growth fit stops there and
+/// the energy is classed as drifting.
+pub const ENERGY_LOST: f64 = 0.1;
+
+/// The growth exponent is fitted over this many decades of time at the end
+/// of the run (or before the orbit was lost): late enough that a bounded
+/// error has reached its plateau, long enough to tell `t^(1/2)` from `t`.
+pub const GROWTH_DECADES: f64 = 2.0;
+
+/// The energy class of a growth exponent `g`: the boundaries sit halfway
+/// between the three laws, `g = 0` (bounded), `1/2` (random walk) and `1`
+/// (drift).
+pub fn classify_growth(g: f64) -> crate::measure::energy::EnergyClass {
+    use crate::measure::energy::EnergyClass;
+    if g < 0.25 {
+        EnergyClass::Bounded
+    } else if g < 0.75 {
+        EnergyClass::RandomWalk
+    } else {
+        EnergyClass::Drifting
+    }
+}
+
+/// Relative phase errors below this are too close to round-off (the angle is
+/// computed to about 1e-15) to fit a leading term from.
+pub const PHASE_FLOOR: f64 = 1e-8;
+
+/// Largest relative difference between a measured and an analytic phase
+/// coefficient. The measurement at `z` carries the next term of the series,
+/// relatively `O(z^2)`, about 1e-4 at the finest resolvable `z` of a
+/// second-order scheme; 1e-3 leaves room for fourth-order schemes resolved at
+/// coarser `z`.
+pub const PHASE_COEFFICIENT_TOLERANCE: f64 = 1e-3;
+
+/// Largest relative residual of a scene check: an automatic derivative is
+/// exact to a few ulps, and the eighth-order difference of the exact solution
+/// (step 1e-3 of the local time scale) is good to about 1e-12; a wrong
+/// potential or solution misses by its error, percent-level for any mistake
+/// worth catching.
+pub const SCENE_TOLERANCE: f64 = 1e-8;

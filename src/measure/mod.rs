@@ -1,4 +1,30 @@
-//! Studies: each turns runs of one scheme on one scene into a record.
+//! Studies: each turns runs of one scheme on one scene into a record, plain
+//! serde data that feeds the CLI's `--json`, the snapshots and the report.
 
+pub mod energy;
 pub mod fit;
 pub mod order;
+pub mod phase;
+pub mod reverse;
+pub mod scene_check;
+pub mod symplectic;
+pub mod tangent;
+
+use serde::Serialize;
+
+/// Pass or fail: does the measurement agree with the claim?
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    /// The measurement agrees with the claim.
+    Pass,
+    /// It does not, or could not be made.
+    Fail,
+}
+
+impl Verdict {
+    /// `Pass` when `ok`.
+    pub fn from_bool(ok: bool) -> Self {
+        if ok { Verdict::Pass } else { Verdict::Fail }
+    }
+}

@@ -7,6 +7,7 @@
 //! [`select_window`]), the order fitted over it (see [`super::fit`]), and the
 //! verdict given by [`tolerance::order_verdict`].
 
+use super::Verdict;
 use super::fit::{OrderFit, order_fit};
 use crate::error::Error;
 use crate::ladder::{
@@ -82,16 +83,6 @@ pub struct Rung {
     pub dropped: Option<DropReason>,
     /// How the run ended.
     pub outcome: Outcome,
-}
-
-/// Pass or fail.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Verdict {
-    /// The measurement agrees with the claim.
-    Pass,
-    /// It does not, or could not be made.
-    Fail,
 }
 
 /// Everything the order study found: the record behind the CLI's `--json`,

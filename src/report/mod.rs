@@ -8,10 +8,13 @@ use markdown::{opt, order, sci, yes_no};
 
 use crate::error::Error;
 use crate::ladder::LadderChoice;
-use crate::measure::order::{OrderRecord, Verdict};
+use crate::measure::Verdict;
+use crate::measure::order::OrderRecord;
+use crate::measure::phase::PhaseRecord;
+use crate::measure::scene_check::SceneCheck;
 use crate::scene::AnyScene;
 use crate::scheme::catalogue;
-use crate::suite::SuiteRecords;
+use crate::suite::{CaseRecords, SuiteRecords};
 use crate::tolerance;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -38,25 +41,43 @@ pub fn deterministic(records: &SuiteRecords) -> String {
          Everything above the timings is deterministic, and a test fails when the \
          committed copy is stale.\n\n",
     );
+    let (passed, total) = records.verdicts();
+    let _ = writeln!(out, "**{passed} of {total} verdicts pass.**\n");
     out.push_str(&method());
     out.push_str("## Schemes\n\n");
     out.push_str(&scheme_table());
     out.push_str("\n## Scenes\n\n");
     out.push_str(&scene_table());
+    out.push_str(
+        "\nEach scene is checked before any scheme is judged against it: the force against \
+         `-grad V` by automatic differentiation (relative residual), the force's curl, and \
+         the exact solution against the equations of motion (`dq/dt = v`, `dv/dt = a(q)` by \
+         an eighth-order difference of the exact solution).\n\n",
+    );
+    out.push_str(&scene_check_table(&records.scenes));
     out.push_str("\n## Order of accuracy\n\n");
-    let passed = records.order.iter().filter(|r| r.passed()).count();
+    let order = records.order();
     let _ = writeln!(
         out,
-        "{passed} of {} verdicts pass. `fit -+` is the half-width of the fit's 95% interval \
-         (Student's t on the standard error, plus the window systematic); the interval shown \
-         is at least -+{} around the estimate, and the verdict needs the theoretical order \
-         inside it and within {} of the estimate. The window lists the rungs fitted and their \
-         step sizes; the straight-line slope over the same rungs is shown for comparison.\n",
-        records.order.len(),
+        "`fit -+` is the half-width of the fit's 95% interval (Student's t on the standard \
+         error, plus the window systematic); the interval shown is at least -+{} around the \
+         estimate, and the verdict needs the theoretical order inside it and within {} of the \
+         estimate. The window lists the rungs fitted and their step sizes; the straight-line \
+         slope over the same rungs is shown for comparison.\n",
         tolerance::ORDER_RESOLUTION,
         tolerance::ORDER_TOLERANCE,
     );
-    out.push_str(&order_table(&records.order));
+    out.push_str(&order_table(&order));
+    out.push_str("\n## Geometry\n\n");
+    out.push_str(&geometry_method());
+    out.push_str(&geometry_table(&records.cases));
+    out.push_str("\n### Phase error on the oscillator\n\n");
+    out.push_str(
+        "The frequency `w_num` of the one-step map's eigenvalues on `x'' = -x`, as \
+         `(w_num - w0)/w0 = C z^p` with `z = h w0`, measured at the finest `z` where the \
+         error stands above round-off, beside the leading term derived by hand.\n\n",
+    );
+    out.push_str(&phase_table(&records.phase));
     out.push_str("\n## Error against step size\n\n");
     out.push_str(
         "Every rung of every ladder: `error` is the largest phase-space error over the \
@@ -66,11 +87,161 @@ pub fn deterministic(records: &SuiteRecords) -> String {
     for scene in AnyScene::all() {
         let id = scene.meta().id;
         let _ = writeln!(out, "\n### {id}\n");
-        for r in records.order.iter().filter(|r| r.scene == id) {
+        for r in order.iter().filter(|r| r.scene == id) {
             out.push_str(&rung_table(r));
         }
     }
     out
+}
+
+fn geometry_method() -> String {
+    format!(
+        "- **Energy.** {} periods at {} steps a period; the running maximum of `|E - E0|/|E0|` \
+         is fitted as `t^g` over the last {} decades (or up to where the error passes {}, the \
+         orbit destroyed): `g < 0.25` bounded, `< 0.75` random walk (round-off), else \
+         drifting. A symplectic scheme must not drift; any other must.\n\
+         - **Symplecticity.** The exact Jacobian `J` of one synchronised step, by dual \
+         numbers, at steps of 1/10, 1/30 and 1/100 period and four states along the orbit, \
+         in coordinates `(q, v/w)`; symplectic when `max |J^T Omega J - Omega| <= {:e}`.\n\
+         - **Reversibility.** {} steps of 1/100 period forward, then back with `-h`; the \
+         return error in units of `eps * scale`, time-symmetric when within `16 N`.\n\n",
+        crate::measure::energy::DEFAULT_PERIODS,
+        (1.0 / crate::measure::energy::DEFAULT_STEP).round(),
+        tolerance::GROWTH_DECADES,
+        tolerance::ENERGY_LOST,
+        tolerance::SYMPLECTIC_TOLERANCE,
+        crate::measure::reverse::DEFAULT_STEPS,
+    )
+}
+
+/// Energy, symplecticity and reversibility, one row per scheme and scene;
+/// round-off-level figures are shown as bounds so the table is the same on
+/// every machine.
+pub fn geometry_table(cases: &[CaseRecords]) -> String {
+    let mut t = Table::new(&[
+        "scheme",
+        "scene",
+        "energy",
+        "max dE/E",
+        "g",
+        "det(J) - 1",
+        "symplectic residual",
+        "return (ulps)",
+        "verdicts E/S/R",
+    ]);
+    let mark = |v: Verdict| {
+        if v == Verdict::Pass {
+            "pass"
+        } else {
+            "**FAIL**"
+        }
+    };
+    for c in cases {
+        let (e, s, r) = (&c.energy, &c.symplectic, &c.reverse);
+        t.row(vec![
+            format!("`{}`", e.scheme),
+            format!("`{}`", e.scene),
+            format!(
+                "{}{} (expect {})",
+                e.class.map_or("-", |c| c.name()),
+                match e.outcome {
+                    crate::run::Outcome::Completed => "",
+                    _ => ", blew up",
+                },
+                e.expected.name()
+            ),
+            sci(e.max_relative_energy_error),
+            opt(e.growth_exponent, |g| format!("{g:.2}")),
+            round_off(s.det_minus_one.abs(), s.tolerance, s.det_minus_one),
+            format!(
+                "{} (claim {})",
+                round_off(s.symplectic_residual, s.tolerance, s.symplectic_residual),
+                yes_no(s.claimed)
+            ),
+            format!(
+                "{} (claim {})",
+                opt(r.return_ulps, |u| if u <= r.tolerance_ulps {
+                    format!("<= {}", r.tolerance_ulps)
+                } else {
+                    sci(u)
+                }),
+                yes_no(r.claimed)
+            ),
+            format!(
+                "{} / {} / {}",
+                mark(e.verdict),
+                mark(s.verdict),
+                mark(r.verdict)
+            ),
+        ]);
+    }
+    t.render()
+}
+
+/// `value` to three digits, or `< bound` when `size` is at round-off level.
+fn round_off(size: f64, bound: f64, value: f64) -> String {
+    if size <= bound {
+        format!("< {bound:e}")
+    } else {
+        format!("{value:.2e}")
+    }
+}
+
+/// The phase error table, one row per scheme.
+pub fn phase_table(records: &[PhaseRecord]) -> String {
+    let mut t = Table::new(&[
+        "scheme",
+        "measured C",
+        "measured p",
+        "analytic C",
+        "analytic p",
+        "verdict",
+    ]);
+    for r in records {
+        t.row(vec![
+            format!("`{}`", r.scheme),
+            opt(r.measured_coefficient, |c| format!("{c:.6}")),
+            opt(r.measured_power, |p| format!("{p:.3}")),
+            r.analytic
+                .map_or("-".into(), |a| format!("{:.6}", a.coefficient)),
+            r.analytic.map_or("-".into(), |a| a.power.to_string()),
+            match r.verdict {
+                Some(Verdict::Pass) => "pass".into(),
+                Some(Verdict::Fail) => format!("**FAIL**: {}", r.reason),
+                None => "measured only".into(),
+            },
+        ]);
+    }
+    t.render()
+}
+
+/// The scene checks, one row per scene; residuals at round-off are shown as bounds.
+pub fn scene_check_table(checks: &[SceneCheck]) -> String {
+    let mut t = Table::new(&[
+        "scene",
+        "force + grad V",
+        "curl",
+        "dq/dt - v",
+        "dv/dt - a",
+        "verdict",
+    ]);
+    let bound = tolerance::SCENE_TOLERANCE;
+    for c in checks {
+        let r = |x: f64| round_off(x, bound, x);
+        t.row(vec![
+            format!("`{}`", c.scene),
+            r(c.force_residual),
+            r(c.curl_residual),
+            opt(c.velocity_residual, r),
+            opt(c.acceleration_residual, r),
+            if c.verdict == Verdict::Pass {
+                "pass".into()
+            } else {
+                "**FAIL**".into()
+            },
+        ]);
+    }
+    t.render()
 }
 
 fn method() -> String {
@@ -86,8 +257,9 @@ fn method() -> String {
          round-off floor, or a rung would need more than {} steps.\n\
          - **Window.** Chosen from the data, never from the claimed order: rungs that blow up \
          or whose error exceeds {} of the orbit are out; rungs whose local order falls below \
-         {} of the median are on the round-off floor; rungs at either end whose local order \
-         strays from the median by more than 10% are pre-asymptotic or touched by round-off.\n\
+         {} of the median are on the round-off floor; end rungs whose local order strays from \
+         the median by more than 2% (fine end: round-off creeping in) or 10% (coarse end: \
+         pre-asymptotic) are out.\n\
          - **Fit.** `ln e = ln C + p ln h + b1 h/H + b2 (h/H)^2` by least squares over the \
          window (the error expansion to second order, which a straight line would turn into \
          bias); `p` with Student's t 95% interval, widened by how far `p` moves when the \
@@ -139,7 +311,7 @@ fn scene_table() -> String {
 }
 
 /// The order-of-accuracy table, one row per scheme and scene.
-pub fn order_table(records: &[OrderRecord]) -> String {
+pub fn order_table(records: &[&OrderRecord]) -> String {
     let mut t = Table::new(&[
         "scheme",
         "scene",
@@ -227,14 +399,16 @@ fn timings(records: &SuiteRecords) -> String {
         records.threads
     );
     let mut t = Table::new(&["scheme", "scene", "steps", "wall time", "ns per step"]);
-    for (r, time) in records.order.iter().zip(&records.timings) {
-        let steps: u64 = r.rungs.iter().map(|g| g.steps).sum();
+    for c in &records.cases {
+        let steps: u64 = c.order.rungs.iter().map(|g| g.steps).sum::<u64>()
+            + c.energy.steps
+            + 2 * c.reverse.steps;
         t.row(vec![
-            format!("`{}`", r.scheme),
-            format!("`{}`", r.scene),
+            format!("`{}`", c.order.scheme),
+            format!("`{}`", c.order.scene),
             steps.to_string(),
-            format!("{:.1} ms", time.as_secs_f64() * 1e3),
-            format!("{:.1}", time.as_secs_f64() * 1e9 / steps.max(1) as f64),
+            format!("{:.1} ms", c.time.as_secs_f64() * 1e3),
+            format!("{:.1}", c.time.as_secs_f64() * 1e9 / steps.max(1) as f64),
         ]);
     }
     out.push_str(&t.render());

@@ -1,6 +1,6 @@
 //! Explicit (forward) Euler.
 
-use super::{Scheme, SchemeMeta, StepFailure};
+use super::{PhaseError, Scheme, SchemeMeta, StepFailure};
 use crate::scene::Scene;
 use crate::state::{Real, State};
 
@@ -22,6 +22,11 @@ impl Euler {
         force_evaluations: 1,
         implicit: false,
         reference: "L. Euler, Institutionum calculi integralis (1768); course notes' Earth-Sun code",
+        // eigenvalues 1 -+ i z: w_num h = atan z = z - z^3/3 + ...
+        phase_error: Some(PhaseError {
+            coefficient: -1.0 / 3.0,
+            power: 2,
+        }),
     };
 }
 

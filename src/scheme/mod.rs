@@ -40,7 +40,30 @@ pub struct SchemeMeta {
     pub implicit: bool,
     /// Where the scheme is published or derived.
     pub reference: &'static str,
+    /// The leading relative phase error on the harmonic oscillator, where it
+    /// has been derived analytically.
+    pub phase_error: Option<PhaseError>,
 }
+
+/// The leading term of the relative phase error of a scheme on the harmonic
+/// oscillator: `(w_num - w0) / w0 = coefficient * (h w0)^power + ...`, with
+/// `w_num` the frequency of the numerical one-step map's eigenvalues.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PhaseError {
+    /// The coefficient.
+    pub coefficient: f64,
+    /// The power of `h w0`.
+    pub power: u32,
+}
+
+/// The phase error of every scheme whose one-step map on the oscillator has
+/// trace `2 - z^2` and determinant 1 (`z = h w0`): the Verlet family and
+/// Euler-Cromer. Then `cos(w_num h) = 1 - z^2/2`, so `w_num h = 2 asin(z/2)
+/// = z + z^3/24 + ...`: the numerical oscillator runs slow by `z^2/24`.
+pub const VERLET_PHASE: Option<PhaseError> = Some(PhaseError {
+    coefficient: 1.0 / 24.0,
+    power: 2,
+});
 
 /// Why a single step could not be completed (an implicit solve that did not
 /// converge, say). A blow-up is not a failure of the step: it is detected by

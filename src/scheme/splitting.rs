@@ -5,7 +5,7 @@
 //! them is a symplectic scheme, and a palindromic sequence is time-symmetric.
 //! A table lists the drift and kick weights in the order they are applied.
 
-use super::{Scheme, SchemeMeta, StepFailure, WithAcceleration};
+use super::{Scheme, SchemeMeta, StepFailure, VERLET_PHASE, WithAcceleration};
 use crate::scene::Scene;
 use crate::state::{Real, State};
 
@@ -152,6 +152,7 @@ pub const EULER_CROMER: SplittingTable = SplittingTable::new(
         reference: "A. Cromer, Am. J. Phys. 49, 455 (1981); course notes' Euler-Cromer method",
         force_evaluations: 0, // derived by `new`
         implicit: false,
+        phase_error: VERLET_PHASE,
     },
     Flow::Kick,
     &[1.0],
@@ -170,6 +171,7 @@ pub const VELOCITY_VERLET: SplittingTable = SplittingTable::new(
         reference: "W. C. Swope et al., J. Chem. Phys. 76, 637 (1982); course notes' velocity Verlet",
         force_evaluations: 0, // derived by `new`
         implicit: false,
+        phase_error: VERLET_PHASE,
     },
     Flow::Kick,
     &[1.0],
@@ -187,6 +189,7 @@ pub const POSITION_VERLET: SplittingTable = SplittingTable::new(
         reference: "E. Hairer, C. Lubich, G. Wanner, Geometric Numerical Integration (2006), I.3.1",
         force_evaluations: 0, // derived by `new`
         implicit: false,
+        phase_error: VERLET_PHASE,
     },
     Flow::Drift,
     &[0.5, 0.5],

@@ -3,7 +3,7 @@
 //! Both are algebraically the same map as velocity Verlet once their velocities
 //! are synchronised; they differ in what they store and so in round-off.
 
-use super::{Scheme, SchemeMeta, StepFailure};
+use super::{Scheme, SchemeMeta, StepFailure, VERLET_PHASE};
 use crate::scene::Scene;
 use crate::state::{Real, State};
 use nalgebra::SVector;
@@ -49,6 +49,7 @@ impl StormerVerlet {
         force_evaluations: 1,
         implicit: false,
         reference: "L. Verlet, Phys. Rev. 159, 98 (1967); C. Störmer (1907); the lecture's original Verlet",
+        phase_error: VERLET_PHASE,
     };
 }
 
@@ -122,6 +123,7 @@ impl Leapfrog {
         force_evaluations: 1,
         implicit: false,
         reference: "R. W. Hockney, J. W. Eastwood, Computer Simulation Using Particles (1981); the lecture's leap-frog",
+        phase_error: VERLET_PHASE,
     };
 }
 

@@ -1,0 +1,217 @@
+//! Energy behaviour over long runs: the largest relative energy error and the
+//! law by which its running maximum grows with time.
+//!
+//! A symplectic scheme conserves a modified energy, so its true energy error
+//! stays bounded (growth exponent `g ~ 0`) until round-off, a random walk,
+//! makes it grow like `t^(1/2)`; a non-symplectic scheme drifts (`g >= 1`).
+
+use super::Verdict;
+use super::fit::power_law;
+use crate::error::Error;
+use crate::ladder::{check_cost, steps_for};
+use crate::run::{Outcome, integrate};
+use crate::scene::Scene;
+use crate::scheme::Scheme;
+use crate::tolerance::{ENERGY_LOST, GROWTH_DECADES, classify_growth};
+use serde::Serialize;
+
+/// Default step, in periods of the scene: 100 steps a period.
+pub const DEFAULT_STEP: f64 = 1.0 / 100.0;
+
+/// Default length of the run, in periods: 10^4 periods, 10^6 steps.
+pub const DEFAULT_PERIODS: f64 = 1e4;
+
+/// Samples of the running maximum kept for the fit and for figures,
+/// log-spaced in time.
+pub const SAMPLES: usize = 200;
+
+/// What to measure.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct EnergySpec {
+    /// The step; `None` for [`DEFAULT_STEP`] periods.
+    pub h: Option<f64>,
+    /// Length of the run in periods; `None` for [`DEFAULT_PERIODS`].
+    pub periods: Option<f64>,
+}
+
+/// How the energy error grows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EnergyClass {
+    /// The running maximum stops growing: `g` near 0.
+    Bounded,
+    /// It grows like `t^(1/2)`: round-off accumulating as a random walk.
+    RandomWalk,
+    /// It grows like `t` or faster: the scheme does not conserve energy.
+    Drifting,
+}
+
+impl EnergyClass {
+    /// The kebab-case name used in records.
+    pub fn name(self) -> &'static str {
+        match self {
+            EnergyClass::Bounded => "bounded",
+            EnergyClass::RandomWalk => "random-walk",
+            EnergyClass::Drifting => "drifting",
+        }
+    }
+}
+
+/// What the energy study found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EnergyRecord {
+    /// Scheme id.
+    pub scheme: &'static str,
+    /// Scene id.
+    pub scene: &'static str,
+    /// The step.
+    pub h: f64,
+    /// Steps taken (fewer than asked if the run blew up).
+    pub steps: u64,
+    /// Length of the run asked for, in periods.
+    pub periods: f64,
+    /// How the run ended.
+    pub outcome: Outcome,
+    /// `E(0)`.
+    pub initial_energy: f64,
+    /// `max |E(t) - E0| / |E0|` over the run.
+    pub max_relative_energy_error: f64,
+    /// The relative error at the end of the run.
+    pub final_relative_energy_error: f64,
+    /// Time at which the relative error first exceeded [`ENERGY_LOST`]: the
+    /// orbit is destroyed and the fit stops there.
+    pub lost_at: Option<f64>,
+    /// Exponent `g` of the running maximum `~ t^g` over the fit range.
+    pub growth_exponent: Option<f64>,
+    /// The time range of that fit.
+    pub fit_range: Option<[f64; 2]>,
+    /// The class of `g`.
+    pub class: Option<EnergyClass>,
+    /// What the scheme's claims imply: bounded if symplectic, else drifting.
+    pub expected: EnergyClass,
+    /// Claim and measurement agree.
+    pub verdict: Verdict,
+    /// Why, in one line.
+    pub reason: String,
+    /// `(t, running maximum)` at log-spaced times.
+    pub samples: Vec<[f64; 2]>,
+}
+
+/// Runs `scheme` on `scene` for a long time and measures its energy error.
+pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    spec: &EnergySpec,
+) -> Result<EnergyRecord, Error> {
+    let period = scene.period();
+    let h = match spec.h {
+        Some(h) => crate::scene::positive("h", h)?,
+        None => DEFAULT_STEP * period,
+    };
+    let periods = crate::scene::positive("periods", spec.periods.unwrap_or(DEFAULT_PERIODS))?;
+    let t_end = periods * period;
+    let steps = steps_for(t_end, h)?;
+    check_cost(steps)?;
+    let start = scene.initial();
+    let e0 = scene.energy(&start);
+    // relative to |E0|; a scene with zero energy is judged against its
+    // kinetic energy scale instead, so the ratio stays finite
+    let norm = if e0 != 0.0 {
+        e0.abs()
+    } else {
+        0.5 * (scene.frequency() * scene.scale()).powi(2)
+    };
+
+    // log-spaced sample times from 10 steps to the end
+    let (t_first, ratio) = (
+        10.0 * h,
+        (t_end / (10.0 * h)).powf(1.0 / (SAMPLES - 1) as f64),
+    );
+    let mut next_sample = t_first;
+    let mut samples: Vec<[f64; 2]> = Vec::with_capacity(SAMPLES + 1);
+    let (mut running, mut last, mut lost_at, mut taken) = (0.0f64, 0.0, None, 0);
+    let outcome = integrate(scheme, scene, &start, h, steps, |n, t, s| {
+        let err = (scene.energy(s) - e0).abs() / norm;
+        running = running.max(err);
+        last = err;
+        taken = n;
+        if lost_at.is_none() && err > ENERGY_LOST {
+            lost_at = Some(t);
+        }
+        if t >= next_sample {
+            samples.push([t, running]);
+            while next_sample <= t {
+                next_sample *= ratio;
+            }
+        }
+    });
+
+    // fit the last GROWTH_DECADES decades before the run ended or the orbit was lost
+    let t_stop = lost_at.unwrap_or(taken as f64 * h);
+    let t_from = t_stop / 10f64.powf(GROWTH_DECADES);
+    let window: Vec<(f64, f64)> = samples
+        .iter()
+        .filter(|[t, m]| *t >= t_from && *t <= t_stop && *m > 0.0)
+        .map(|&[t, m]| (t, m))
+        .collect();
+    let all_zero = samples.iter().all(|[_, m]| *m == 0.0);
+    let fit = power_law(&window);
+    let growth_exponent = if all_zero {
+        Some(0.0)
+    } else {
+        fit.map(|f| f.slope)
+    };
+    let class = if !outcome.completed() || lost_at.is_some() {
+        // an orbit destroyed or blown up has not conserved energy, whatever
+        // the slope just before
+        Some(EnergyClass::Drifting)
+    } else {
+        growth_exponent.map(classify_growth)
+    };
+    let meta = scheme.meta();
+    let expected = if meta.symplectic {
+        EnergyClass::Bounded
+    } else {
+        EnergyClass::Drifting
+    };
+    // round-off grows as a random walk for any scheme: a symplectic scheme
+    // whose truncation error is below it is still conserving energy
+    let agrees = match class {
+        Some(c) if meta.symplectic => c != EnergyClass::Drifting,
+        Some(c) => c == EnergyClass::Drifting,
+        None => false,
+    };
+    let reason = match (class, growth_exponent) {
+        (Some(c), g) => format!(
+            "{}{}, max relative error {running:.2e}; {} expects {}",
+            c.name(),
+            g.map_or(String::new(), |g| format!(" (g = {g:.2})")),
+            if meta.symplectic {
+                "a symplectic scheme"
+            } else {
+                "a non-symplectic scheme"
+            },
+            expected.name(),
+        ),
+        (None, _) => "too few samples to fit a growth law".to_string(),
+    };
+    Ok(EnergyRecord {
+        scheme: meta.id,
+        scene: scene.meta().id,
+        h,
+        steps: taken,
+        periods,
+        outcome,
+        initial_energy: e0,
+        max_relative_energy_error: running,
+        final_relative_energy_error: last,
+        lost_at,
+        growth_exponent,
+        fit_range: fit.map(|_| [t_from.max(t_first), t_stop]),
+        class,
+        expected,
+        verdict: Verdict::from_bool(agrees),
+        reason,
+        samples,
+    })
+}

@@ -1,0 +1,119 @@
+//! Reversibility: `N` steps with `h`, then `N` steps with `-h` from the
+//! synchronised end state; a time-symmetric scheme comes back to round-off.
+
+use super::Verdict;
+use crate::error::Error;
+use crate::ladder::check_cost;
+use crate::run::{Outcome, integrate};
+use crate::scene::Scene;
+use crate::scheme::Scheme;
+use crate::tolerance::reverse_tolerance_ulps;
+use serde::Serialize;
+
+/// Default step, in periods of the scene.
+pub const DEFAULT_STEP: f64 = 1.0 / 100.0;
+
+/// Default number of steps each way: ten periods at the default step.
+pub const DEFAULT_STEPS: u64 = 1000;
+
+/// What to measure.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct ReverseSpec {
+    /// The step; `None` for [`DEFAULT_STEP`] periods.
+    pub h: Option<f64>,
+    /// Steps each way; `None` for [`DEFAULT_STEPS`].
+    pub steps: Option<u64>,
+}
+
+/// What the reversibility study found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReverseRecord {
+    /// Scheme id.
+    pub scheme: &'static str,
+    /// Scene id.
+    pub scene: &'static str,
+    /// The step.
+    pub h: f64,
+    /// Steps each way.
+    pub steps: u64,
+    /// How the round trip ended.
+    pub outcome: Outcome,
+    /// Phase-space distance from the start after the round trip (length
+    /// units); `None` if it blew up.
+    pub return_error: Option<f64>,
+    /// The same in units of `eps * scale`, the rounding unit of the motion.
+    pub return_ulps: Option<f64>,
+    /// Largest return, in those units, that counts as round-off.
+    pub tolerance_ulps: f64,
+    /// The return is within round-off.
+    pub measured: bool,
+    /// The scheme claims to be time-symmetric.
+    pub claimed: bool,
+    /// Claim and measurement agree.
+    pub verdict: Verdict,
+    /// Why, in one line.
+    pub reason: String,
+}
+
+/// Runs the round trip.
+pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    spec: &ReverseSpec,
+) -> Result<ReverseRecord, Error> {
+    let h = match spec.h {
+        Some(h) => crate::scene::positive("h", h)?,
+        None => DEFAULT_STEP * scene.period(),
+    };
+    let steps = spec.steps.unwrap_or(DEFAULT_STEPS);
+    if steps == 0 {
+        return Err(Error::InvalidParameter {
+            name: "steps",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    check_cost(steps.saturating_mul(2))?;
+    let start = scene.initial();
+    let mut there = start;
+    let mut outcome = integrate(scheme, scene, &start, h, steps, |_, _, s| there = *s);
+    let mut back = there;
+    if outcome.completed() {
+        outcome = integrate(scheme, scene, &there, -h, steps, |_, _, s| back = *s);
+    }
+    let scale = scene.scale();
+    let return_error = outcome
+        .completed()
+        .then(|| scene.phase_distance(&back, &start));
+    let return_ulps = return_error.map(|e| e / (f64::EPSILON * scale));
+    let tolerance_ulps = reverse_tolerance_ulps(steps);
+    let measured = return_ulps.is_some_and(|u| u <= tolerance_ulps);
+    let meta = scheme.meta();
+    let reason = match return_ulps {
+        None => "the round trip blew up".to_string(),
+        Some(u) => format!(
+            "returns within {u:.3} ulps ({} {tolerance_ulps}): {}time-symmetric, as {}claimed",
+            if measured { "<=" } else { ">" },
+            if measured { "" } else { "not " },
+            if measured == meta.symmetric {
+                ""
+            } else {
+                "NOT "
+            },
+        ),
+    };
+    Ok(ReverseRecord {
+        scheme: meta.id,
+        scene: scene.meta().id,
+        h,
+        steps,
+        outcome,
+        return_error,
+        return_ulps,
+        tolerance_ulps,
+        measured,
+        claimed: meta.symmetric,
+        verdict: Verdict::from_bool(return_ulps.is_some() && measured == meta.symmetric),
+        reason,
+    })
+}
