@@ -3,7 +3,8 @@
 //! public trait, and each must get a failing verdict with the right
 //! measured order.
 
-use stepladder::measure::order::{OrderSpec, Verdict, global_order};
+use stepladder::measure::Verdict;
+use stepladder::measure::order::{OrderSpec, global_order};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene};
 use stepladder::scheme::{
     Flow, Leapfrog, Scheme, SchemeMeta, SplittingTable, StepFailure, VELOCITY_VERLET,

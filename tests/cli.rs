@@ -84,6 +84,48 @@ fn order_json_has_the_record() {
 }
 
 #[test]
+fn geometry_studies_have_their_json_fields() {
+    let e = json(&[
+        "energy",
+        "--scheme",
+        "euler",
+        "--scene",
+        "harmonic",
+        "--periods",
+        "50",
+        "--json",
+    ]);
+    assert!(e["max_relative_energy_error"].as_f64().unwrap() > 0.0);
+    assert!(e["growth_exponent"].as_f64().unwrap() > 0.75);
+    assert_eq!(e["class"], "drifting");
+    assert_eq!(e["verdict"], "pass");
+    let s = json(&[
+        "symplectic",
+        "--scheme",
+        "leapfrog",
+        "--scene",
+        "kepler-circular",
+        "--h",
+        "0.01",
+        "--json",
+    ]);
+    assert!(s["det_minus_one"].as_f64().unwrap().abs() < 1e-12);
+    assert!(s["symplectic_residual"].as_f64().unwrap() < 1e-12);
+    let r = json(&[
+        "reverse",
+        "--scheme",
+        "euler-cromer",
+        "--scene",
+        "harmonic",
+        "--steps",
+        "100",
+        "--json",
+    ]);
+    assert!(r["return_error"].as_f64().unwrap() > 1e-6);
+    assert_eq!(r["measured"], false);
+}
+
+#[test]
 fn fixed_ladder_from_the_command_line() {
     let v = json(&[
         "order",
@@ -156,6 +198,52 @@ fn bad_input_is_refused_with_a_one_line_message() {
     refused(&order(&["--h0", "abc"]), "invalid value 'abc'");
     refused(&["order", "--scene", "harmonic"], "--scheme");
     refused(&["report", "--threads", "0"], "threads = 0 is invalid");
+    refused(
+        &[
+            "energy", "--scheme", "euler", "--scene", "harmonic", "--h", "-1",
+        ],
+        "h = -1 is invalid",
+    );
+    refused(
+        &[
+            "energy",
+            "--scheme",
+            "euler",
+            "--scene",
+            "harmonic",
+            "--periods",
+            "0",
+        ],
+        "periods = 0 is invalid",
+    );
+    refused(
+        &[
+            "energy", "--scheme", "euler", "--scene", "harmonic", "--h", "1e-12",
+        ],
+        "refusing a run of",
+    );
+    refused(
+        &[
+            "symplectic",
+            "--scheme",
+            "euler",
+            "--scene",
+            "harmonic",
+            "--h",
+            "nan",
+        ],
+        "h = NaN is invalid",
+    );
+    refused(
+        &[
+            "reverse", "--scheme", "euler", "--scene", "harmonic", "--steps", "0",
+        ],
+        "steps = 0 is invalid",
+    );
+    refused(
+        &["reverse", "--scheme", "rk9", "--scene", "harmonic"],
+        "valid schemes",
+    );
     refused(&["frobnicate"], "unrecognized subcommand");
 }
 

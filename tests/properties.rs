@@ -4,8 +4,13 @@
 use proptest::prelude::*;
 use stepladder::measure::fit::order_fit;
 use stepladder::measure::order::{OrderSpec, global_order, select_window};
+use stepladder::measure::reverse::{ReverseSpec, reversibility};
+use stepladder::measure::tangent::step_jacobian;
+use stepladder::run::integrate;
 use stepladder::scene::Harmonic;
-use stepladder::scheme::VELOCITY_VERLET;
+use stepladder::scene::Scene;
+use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
+use stepladder::state::State;
 use stepladder::tolerance::{order_interval, order_verdict};
 
 proptest! {
@@ -52,5 +57,85 @@ proptest! {
         let osc = Harmonic::new(w0, x0, v0).unwrap();
         let r = global_order(&VELOCITY_VERLET, &osc, &OrderSpec::default()).unwrap();
         prop_assert!(r.passed(), "w0 = {w0}, x0 = {x0}, v0 = {v0}: {}", r.reason);
+    }
+}
+
+/// The tangent-map and reversibility claims of one scheme on one oscillator.
+struct Tangent {
+    w0: f64,
+    x0: f64,
+    v0: f64,
+    z: f64,
+}
+
+impl SchemeVisitor for &Tangent {
+    type Output = Result<(), String>;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output {
+        let meta = scheme.meta();
+        let osc = Harmonic::new(self.w0, self.x0, self.v0).map_err(|e| e.to_string())?;
+        let h = self.z / self.w0;
+        let j = step_jacobian(scheme, &osc, &osc.initial(), h).map_err(|e| e.to_string())?;
+        let defect = (j.determinant() - 1.0).abs();
+        if meta.symplectic && defect > 1e-13 {
+            return Err(format!("{}: det J - 1 = {defect:e}", meta.id));
+        }
+        if meta.symmetric {
+            let r = reversibility(
+                scheme,
+                &osc,
+                &ReverseSpec {
+                    h: Some(h),
+                    steps: Some(200),
+                },
+            )
+            .map_err(|e| e.to_string())?;
+            if !r.measured {
+                return Err(format!("{}: {}", meta.id, r.reason));
+            }
+        }
+        Ok(())
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Over random oscillators, states and stable steps (`h w0 < 1.5`, inside
+    /// every catalogue scheme's stability interval): symplectic schemes have
+    /// `det J = 1`, symmetric ones come back when run backwards.
+    #[test]
+    fn symplectic_and_symmetric_claims_hold_for_any_oscillator_and_step(
+        w0 in 0.05f64..20.0,
+        x0 in -5.0f64..5.0,
+        v0 in -5.0f64..5.0,
+        z in 0.01f64..1.5,
+    ) {
+        prop_assume!(x0.abs() + v0.abs() > 1e-3);
+        let t = Tangent { w0, x0, v0, z };
+        for id in scheme_ids() {
+            let result = visit_scheme(id, &t).unwrap();
+            prop_assert!(result.is_ok(), "{}", result.unwrap_err());
+        }
+    }
+
+    /// Velocity Verlet keeps `v^2/2 + w^2 x^2 (1 - z^2/4)/2` to round-off on
+    /// any oscillator (see tests/geometry.rs for the derivation).
+    #[test]
+    fn verlet_modified_energy_is_conserved_for_any_oscillator(
+        w0 in 0.05f64..20.0,
+        x0 in -5.0f64..5.0,
+        v0 in -5.0f64..5.0,
+        z in 0.01f64..1.9,
+    ) {
+        prop_assume!(x0.abs() + v0.abs() > 1e-3);
+        let osc = Harmonic::new(w0, x0, v0).unwrap();
+        let h = z / w0;
+        let modified = |s: &State<1>| 0.5 * s.v[0].powi(2) + 0.5 * w0 * w0 * s.q[0].powi(2) * (1.0 - z * z / 4.0);
+        let m0 = modified(&osc.initial());
+        let mut worst = 0.0f64;
+        integrate(&VELOCITY_VERLET, &osc, &osc.initial(), h, 2000, |_, _, s| {
+            worst = worst.max((modified(s) - m0).abs() / m0);
+        });
+        prop_assert!(worst < 1e-12, "modified energy moved by {worst:e}");
     }
 }

@@ -2,7 +2,7 @@
 //! machine, pinned with insta in the top-level `snapshots/` folder. A diff
 //! here means a refactor changed a result: review it with `cargo insta review`.
 
-use stepladder::report::order_table;
+use stepladder::report::{geometry_table, order_table, phase_table};
 use stepladder::suite::run_suite;
 
 fn settings(description: &str) -> insta::Settings {
@@ -15,11 +15,19 @@ fn settings(description: &str) -> insta::Settings {
 }
 
 #[test]
-fn order_table_is_unchanged() {
+fn suite_tables_are_unchanged() {
     let records = run_suite(2, &|_, _, _| {}).unwrap();
     settings(
         "Measured global order of every scheme on every scene (3 decimals), its interval, the \
          fitted window with its step sizes, the straight-line slope and the verdict.",
     )
-    .bind(|| insta::assert_snapshot!("order_table", order_table(&records.order)));
+    .bind(|| insta::assert_snapshot!("order_table", order_table(&records.order())));
+    settings(
+        "Energy class and largest relative energy error over 10^4 periods with the growth \
+         exponent; det(J) - 1 and symplectic residual of the exact tangent map (round-off \
+         shown as a bound); return error after 1000 steps forward and back; the verdicts.",
+    )
+    .bind(|| insta::assert_snapshot!("geometry_table", geometry_table(&records.cases)));
+    settings("Leading relative phase error on the oscillator, measured and analytic.")
+        .bind(|| insta::assert_snapshot!("phase_table", phase_table(&records.phase)));
 }
