@@ -66,9 +66,9 @@ where
 /// ```
 /// use stepladder::case::case;
 /// use stepladder::scene::AnyScene;
-/// let c = case("leapfrog", &AnyScene::by_id("kepler-circular").unwrap()).unwrap();
+/// let c = case("leapfrog", &AnyScene::parse("kepler-circular").unwrap()).unwrap();
 /// assert_eq!(c.scheme().order, 2);
-/// assert!(case("rk9", &AnyScene::by_id("harmonic").unwrap()).is_err());
+/// assert!(case("rk9", &AnyScene::parse("harmonic").unwrap()).is_err());
 /// ```
 pub fn case(scheme_id: &str, scene: &AnyScene) -> Result<Box<dyn Case>, Error> {
     visit_scheme(scheme_id, BindScheme(scene))

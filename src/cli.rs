@@ -9,6 +9,7 @@ use crate::measure::Verdict;
 use crate::measure::energy::EnergySpec;
 use crate::measure::order::{OrderRecord, OrderSpec};
 use crate::measure::reverse::ReverseSpec;
+use crate::measure::stability::{StabilityRecord, stability};
 use crate::measure::symplectic::SymplecticSpec;
 use crate::report;
 use crate::scene::AnyScene;
@@ -48,6 +49,15 @@ enum Command {
     Symplectic(SymplecticArgs),
     /// Run forward, then back with -h, and measure how far from the start it ends.
     Reverse(ReverseArgs),
+    /// Find the steps z = h w0 for which a scheme is stable on the oscillator.
+    Stability {
+        /// Scheme id (see `stepladder list`).
+        #[arg(long)]
+        scheme: String,
+        /// Print the record as JSON.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 /// The scheme and scene every single-case study takes.
@@ -56,7 +66,8 @@ struct CaseArgs {
     /// Scheme id (see `stepladder list`).
     #[arg(long)]
     scheme: String,
-    /// Scene id (see `stepladder list`).
+    /// Scene id (see `stepladder list`), optionally with parameters:
+    /// `harmonic:w0=50,x0=2`.
     #[arg(long)]
     scene: String,
     /// Print the record as JSON.
@@ -66,7 +77,7 @@ struct CaseArgs {
 
 impl CaseArgs {
     fn case(&self) -> Result<Box<dyn crate::case::Case>, Error> {
-        case(&self.scheme, &AnyScene::by_id(&self.scene)?)
+        case(&self.scheme, &AnyScene::parse(&self.scene)?)
     }
 }
 
@@ -130,7 +141,8 @@ struct OrderArgs {
     /// Scheme id (see `stepladder list`).
     #[arg(long)]
     scheme: String,
-    /// Scene id (see `stepladder list`).
+    /// Scene id (see `stepladder list`), optionally with parameters:
+    /// `harmonic:w0=50,x0=2`.
     #[arg(long)]
     scene: String,
     /// End time of every rung (default: 2 sqrt(2) periods of the scene).
@@ -188,6 +200,18 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Order(args) => order(&args),
+        Command::Stability { scheme, json } => {
+            let r = crate::scheme::visit_scheme(&scheme, StabilityOf)?;
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&r).expect("plain data serialises")
+                );
+            } else {
+                print!("{}", report::stability_table(std::slice::from_ref(&r)));
+            }
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Energy(a) => {
             let r = a.case.case()?.energy(&EnergySpec {
                 h: a.h,
@@ -234,6 +258,18 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             );
             emit(a.case.json, &r, &text, r.verdict)
         }
+    }
+}
+
+/// The stability study of a catalogue scheme.
+struct StabilityOf;
+impl crate::scheme::SchemeVisitor for StabilityOf {
+    type Output = StabilityRecord;
+    fn visit<M: crate::scheme::Scheme + Sync + 'static>(
+        self,
+        scheme: &'static M,
+    ) -> StabilityRecord {
+        stability(scheme)
     }
 }
 
@@ -300,13 +336,27 @@ fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
 #[derive(Serialize)]
 struct Listing {
     schemes: Vec<&'static crate::scheme::SchemeMeta>,
-    scenes: Vec<crate::scene::SceneMeta>,
+    scenes: Vec<SceneListing>,
+}
+
+#[derive(Serialize)]
+struct SceneListing {
+    #[serde(flatten)]
+    meta: crate::scene::SceneMeta,
+    /// `(name, meaning)` of every parameter `--scene id:name=value` accepts.
+    accepts: &'static [(&'static str, &'static str)],
 }
 
 fn list(json: bool) {
     let listing = Listing {
         schemes: catalogue(),
-        scenes: AnyScene::all().iter().map(AnyScene::meta).collect(),
+        scenes: AnyScene::all()
+            .iter()
+            .map(|s| SceneListing {
+                meta: s.meta(),
+                accepts: s.accepts(),
+            })
+            .collect(),
     };
     if json {
         println!(
@@ -335,19 +385,30 @@ fn list(json: bool) {
         ]);
     }
     println!("{}", t.render());
-    let mut t = report::Table::new(&["scene", "dimension", "parameters"]);
+    let mut t = report::Table::new(&[
+        "scene",
+        "dimension",
+        "defaults",
+        "parameters (--scene id:name=value)",
+    ]);
     for s in &listing.scenes {
+        let accepts: Vec<String> = s.accepts.iter().map(|(n, m)| format!("{n}: {m}")).collect();
         t.row(vec![
-            s.id.into(),
-            s.dimension.to_string(),
-            s.parameters.clone(),
+            s.meta.id.into(),
+            s.meta.dimension.to_string(),
+            s.meta.parameters.clone(),
+            if accepts.is_empty() {
+                "none".into()
+            } else {
+                accepts.join("; ")
+            },
         ]);
     }
     print!("{}", t.render());
 }
 
 fn order(args: &OrderArgs) -> Result<ExitCode, Error> {
-    let scene = AnyScene::by_id(&args.scene)?;
+    let scene = AnyScene::parse(&args.scene)?;
     let c = case(&args.scheme, &scene)?;
     let ladder = if args.h0.is_none() && args.levels.is_none() && args.ratio.is_none() {
         LadderChoice::Auto

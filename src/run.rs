@@ -15,6 +15,8 @@ pub enum Outcome {
     Completed,
     /// The state left the blow-up bound or stopped being finite.
     Unstable {
+        /// The step size.
+        h: f64,
         /// The step at which the state was first out of bounds.
         step: u64,
         /// Its time.
@@ -22,6 +24,8 @@ pub enum Outcome {
     },
     /// A step could not be carried out.
     Failed {
+        /// The step size.
+        h: f64,
         /// The step that failed.
         step: u64,
         /// Its time.
@@ -35,6 +39,28 @@ impl Outcome {
     /// True for a run that went to the end.
     pub fn completed(&self) -> bool {
         matches!(self, Outcome::Completed)
+    }
+}
+
+impl std::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Outcome::Completed => write!(f, "completed"),
+            Outcome::Unstable { h, step, time } => {
+                write!(f, "unstable at h = {h}, after {step} steps (t = {time:.6})")
+            }
+            Outcome::Failed {
+                h,
+                step,
+                time,
+                failure,
+            } => {
+                write!(
+                    f,
+                    "step {step} at h = {h} failed (t = {time:.6}): {failure}"
+                )
+            }
+        }
     }
 }
 
@@ -60,6 +86,7 @@ pub fn integrate<M: Scheme, S: Scene<D>, const D: usize>(
         let time = n as f64 * h;
         if let Err(failure) = scheme.step(scene, &mut carry, h) {
             return Outcome::Failed {
+                h,
                 step: n,
                 time,
                 failure,
@@ -68,7 +95,7 @@ pub fn integrate<M: Scheme, S: Scene<D>, const D: usize>(
         let s = scheme.state(&carry, h);
         let size2 = s.q.norm_squared() + (s.v / w).norm_squared();
         if size2.is_nan() || size2 > bound * bound {
-            return Outcome::Unstable { step: n, time };
+            return Outcome::Unstable { h, step: n, time };
         }
         observe(n, time, &s);
     }

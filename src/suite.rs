@@ -10,6 +10,7 @@ use crate::measure::order::{OrderRecord, OrderSpec};
 use crate::measure::phase::{PhaseRecord, phase_error};
 use crate::measure::reverse::{ReverseRecord, ReverseSpec};
 use crate::measure::scene_check::{SceneCheck, check_scene};
+use crate::measure::stability::{StabilityRecord, stability};
 use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec};
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
@@ -39,6 +40,8 @@ pub struct SuiteRecords {
     pub cases: Vec<CaseRecords>,
     /// Phase error on the oscillator, one per scheme.
     pub phase: Vec<PhaseRecord>,
+    /// Linear stability on the oscillator, one per scheme.
+    pub stability: Vec<StabilityRecord>,
     /// The check of every scene.
     pub scenes: Vec<SceneCheck>,
     /// Wall time of the whole suite.
@@ -139,25 +142,27 @@ pub fn run_suite(
                 .expect("every case ran")
         })
         .collect::<Result<Vec<_>, Error>>()?;
-    let phase = scheme_ids()
+    let (phase, stability) = scheme_ids()
         .into_iter()
-        .map(|id| visit_scheme(id, PhaseOf).expect("catalogue ids are valid"))
-        .collect();
+        .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
+        .unzip();
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
     Ok(SuiteRecords {
         cases,
         phase,
+        stability,
         scenes,
         total: start.elapsed(),
         threads,
     })
 }
 
-struct PhaseOf;
-impl SchemeVisitor for PhaseOf {
-    type Output = PhaseRecord;
-    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> PhaseRecord {
-        phase_error(scheme)
+/// The studies of a scheme alone, on the oscillator.
+struct SchemeStudies;
+impl SchemeVisitor for SchemeStudies {
+    type Output = (PhaseRecord, StabilityRecord);
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output {
+        (phase_error(scheme), stability(scheme))
     }
 }
 

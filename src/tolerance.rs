@@ -107,13 +107,19 @@ pub fn reverse_tolerance_ulps(steps: u64) -> f64 {
     16.0 * steps as f64
 }
 
-/// A relative energy error beyond this means the orbit is destroyed (for the
-/// circular orbit, 10% of the binding energy): the growth fit stops there and
-/// the energy is classed as drifting.
-pub const ENERGY_LOST: f64 = 0.1;
+/// A relative energy error past this fraction of the energy is of the order
+/// of the energy itself; if it is still growing after the first period (see
+/// [`LOST_GROWTH`]) the orbit is lost and the energy classed as drifting.
+pub const LOST_FRACTION: f64 = 0.5;
+
+/// "Still growing": the final running maximum exceeds its value after one
+/// period by this factor. A bounded error has sampled its whole oscillation
+/// within a period (velocity Verlet at `h w = 1.95` swings by a factor 19,
+/// all of it in the first period), so it stays put afterwards.
+pub const LOST_GROWTH: f64 = 1.1;
 
 /// The growth exponent is fitted over this many decades of time at the end
-/// of the run (or before the orbit was lost): late enough that a bounded
+/// of the run: late enough that a bounded
 /// error has reached its plateau, long enough to tell `t^(1/2)` from `t`.
 pub const GROWTH_DECADES: f64 = 2.0;
 
@@ -148,3 +154,16 @@ pub const PHASE_COEFFICIENT_TOLERANCE: f64 = 1e-3;
 /// potential or solution misses by its error, percent-level for any mistake
 /// worth catching.
 pub const SCENE_TOLERANCE: f64 = 1e-8;
+
+/// A one-step map on the oscillator counts as power-bounded while its
+/// spectral radius is at most `1 + STABILITY_SLACK`: an exactly
+/// area-preserving map of a few dozen stages computes to `1 -+` a few `eps`
+/// (below 1e-14), while past a stability boundary the radius grows like the
+/// square root of the distance to it, so the slack moves a boundary by far
+/// less than the bisection's resolution. Explicit Euler, radius
+/// `sqrt(1 + z^2)`, would pass only below `z = 1.4e-7`, under the scan's
+/// first point.
+pub const STABILITY_SLACK: f64 = 1e-14;
+
+/// Width to which each stability boundary is bisected, in `z = h w0`.
+pub const STABILITY_BISECTION: f64 = 1e-10;

@@ -126,6 +126,27 @@ fn geometry_studies_have_their_json_fields() {
 }
 
 #[test]
+fn stability_json_and_scene_parameters() {
+    let v = json(&["stability", "--scheme", "leapfrog", "--json"]);
+    assert!((v["stability_limit"].as_f64().unwrap() - 2.0).abs() < 1e-9);
+    assert_eq!(v["stable_intervals"].as_array().unwrap().len(), 1);
+    let v = json(&["stability", "--scheme", "euler", "--json"]);
+    assert_eq!(v["stability_limit"], 0.0);
+    // a stiff oscillator above the limit: the run stops early and says so
+    let out = run(&[
+        "energy",
+        "--scheme",
+        "velocity-verlet",
+        "--scene",
+        "harmonic:w0=50",
+        "--h",
+        "0.05",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("unstable at h = 0.05, after"));
+}
+
+#[test]
 fn fixed_ladder_from_the_command_line() {
     let v = json(&[
         "order",
@@ -245,6 +266,19 @@ fn bad_input_is_refused_with_a_one_line_message() {
         "valid schemes",
     );
     refused(&["frobnicate"], "unrecognized subcommand");
+    refused(
+        &["order", "--scheme", "euler", "--scene", "harmonic:w0=0"],
+        "w0 = 0 is invalid",
+    );
+    refused(
+        &["order", "--scheme", "euler", "--scene", "harmonic:spring=2"],
+        "its parameters: w0, x0, v0",
+    );
+    refused(
+        &["order", "--scheme", "euler", "--scene", "harmonic:w0"],
+        "expected name=number",
+    );
+    refused(&["stability", "--scheme", "rk9"], "valid schemes");
 }
 
 #[test]

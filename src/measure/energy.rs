@@ -12,7 +12,7 @@ use crate::ladder::{check_cost, steps_for};
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
-use crate::tolerance::{ENERGY_LOST, GROWTH_DECADES, classify_growth};
+use crate::tolerance::{GROWTH_DECADES, LOST_FRACTION, LOST_GROWTH, classify_growth};
 use serde::Serialize;
 
 /// Default step, in periods of the scene: 100 steps a period.
@@ -78,8 +78,8 @@ pub struct EnergyRecord {
     pub max_relative_energy_error: f64,
     /// The relative error at the end of the run.
     pub final_relative_energy_error: f64,
-    /// Time at which the relative error first exceeded [`ENERGY_LOST`]: the
-    /// orbit is destroyed and the fit stops there.
+    /// When the orbit was lost: the time the relative error first passed
+    /// [`LOST_FRACTION`], if it was still growing after the first period.
     pub lost_at: Option<f64>,
     /// Exponent `g` of the running maximum `~ t^g` over the fit range.
     pub growth_exponent: Option<f64>,
@@ -129,14 +129,18 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
     );
     let mut next_sample = t_first;
     let mut samples: Vec<[f64; 2]> = Vec::with_capacity(SAMPLES + 1);
-    let (mut running, mut last, mut lost_at, mut taken) = (0.0f64, 0.0, None, 0);
+    let (mut running, mut last, mut taken) = (0.0f64, 0.0, 0);
+    let (mut past_lost_fraction, mut after_one_period) = (None, None);
     let outcome = integrate(scheme, scene, &start, h, steps, |n, t, s| {
         let err = (scene.energy(s) - e0).abs() / norm;
         running = running.max(err);
         last = err;
         taken = n;
-        if lost_at.is_none() && err > ENERGY_LOST {
-            lost_at = Some(t);
+        if past_lost_fraction.is_none() && running > LOST_FRACTION {
+            past_lost_fraction = Some(t);
+        }
+        if after_one_period.is_none() && t >= period {
+            after_one_period = Some(running);
         }
         if t >= next_sample {
             samples.push([t, running]);
@@ -146,8 +150,15 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
         }
     });
 
-    // fit the last GROWTH_DECADES decades before the run ended or the orbit was lost
-    let t_stop = lost_at.unwrap_or(taken as f64 * h);
+    // An error of the order of the energy itself that was still growing
+    // after the first period (when a bounded error has sampled its whole
+    // oscillation) is no bounded oscillation: the orbit is lost, however
+    // flat the error looks once it nears its ceiling (Euler's expanding
+    // Kepler orbit approaches E = 0 from below).
+    let lost_at =
+        past_lost_fraction.filter(|_| after_one_period.is_some_and(|m| running > LOST_GROWTH * m));
+    // fit the last GROWTH_DECADES decades of the run
+    let t_stop = taken as f64 * h;
     let t_from = t_stop / 10f64.powf(GROWTH_DECADES);
     let window: Vec<(f64, f64)> = samples
         .iter()
@@ -182,6 +193,26 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
         None => false,
     };
     let reason = match (class, growth_exponent) {
+        _ if !outcome.completed() => format!(
+            "{outcome}: the energy grew by {running:.2e} of E0 before; {} expects {}",
+            if meta.symplectic {
+                "a symplectic scheme"
+            } else {
+                "a non-symplectic scheme"
+            },
+            expected.name(),
+        ),
+        _ if lost_at.is_some() => format!(
+            "orbit lost: the energy error passed {LOST_FRACTION} of E0 at t = {:.4} and kept \
+             growing, to {running:.2e}; {} expects {}",
+            lost_at.unwrap_or_default(),
+            if meta.symplectic {
+                "a symplectic scheme"
+            } else {
+                "a non-symplectic scheme"
+            },
+            expected.name(),
+        ),
         (Some(c), g) => format!(
             "{}{}, max relative error {running:.2e}; {} expects {}",
             c.name(),

@@ -7,6 +7,7 @@ pub mod order;
 pub mod phase;
 pub mod reverse;
 pub mod scene_check;
+pub mod stability;
 pub mod symplectic;
 pub mod tangent;
 

@@ -1,6 +1,6 @@
 //! The 1-D harmonic oscillator `x'' = -w0^2 x`.
 
-use super::{Scene, SceneMeta, finite, positive};
+use super::{Parameters, Parametrised, Scene, SceneMeta, finite, positive};
 use crate::error::Error;
 use crate::state::{Real, State};
 use nalgebra::{SVector, Vector1};
@@ -52,6 +52,18 @@ impl Harmonic {
     /// The angular frequency `w0`.
     pub fn w0(&self) -> f64 {
         self.w0
+    }
+}
+
+impl Parametrised for Harmonic {
+    const PARAMETERS: &'static [(&'static str, &'static str)] = &[
+        ("w0", "angular frequency (default 1)"),
+        ("x0", "initial position (default 1)"),
+        ("v0", "initial velocity (default 0)"),
+    ];
+    fn with_parameters(p: &Parameters) -> Result<Self, Error> {
+        let d = Self::default();
+        Self::new(p.get("w0", d.w0), p.get("x0", d.x0), p.get("v0", d.v0))
     }
 }
 

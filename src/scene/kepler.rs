@@ -1,6 +1,7 @@
 //! The Kepler problem `r'' = -GM r / |r|^3` in the plane, in astronomical units.
 
-use super::{Scene, SceneMeta};
+use super::{Parameters, Parametrised, Scene, SceneMeta};
+use crate::error::Error;
 use crate::state::{Real, State};
 use nalgebra::{SVector, Vector2};
 use std::f64::consts::{PI, TAU};
@@ -14,6 +15,13 @@ pub const GM_SUN: f64 = 4.0 * PI * PI;
 /// `r(t) = (cos 2 pi t, sin 2 pi t)`, energy `|v|^2/2 - GM/|r| = -2 pi^2`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct KeplerCircular;
+
+impl Parametrised for KeplerCircular {
+    const PARAMETERS: &'static [(&'static str, &'static str)] = &[];
+    fn with_parameters(_: &Parameters) -> Result<Self, Error> {
+        Ok(Self)
+    }
+}
 
 impl Scene<2> for KeplerCircular {
     fn meta(&self) -> SceneMeta {

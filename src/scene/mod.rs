@@ -145,6 +145,36 @@ macro_rules! scenes {
                 vec![$(AnyScene::$variant(<$ty>::default())),*]
             }
 
+            /// The scene a command line names: an id, optionally followed by
+            /// `:name=value,name=value` to change parameters from their defaults.
+            ///
+            /// ```
+            /// use stepladder::scene::AnyScene;
+            /// let stiff = AnyScene::parse("harmonic:w0=50").unwrap();
+            /// assert!((stiff.period() - std::f64::consts::TAU / 50.0).abs() < 1e-15);
+            /// assert!(AnyScene::parse("harmonic:w0=-1").is_err());
+            /// assert!(AnyScene::parse("harmonic:spring=3").is_err());
+            /// assert!(AnyScene::parse("saturn").is_err());
+            /// ```
+            pub fn parse(spec: &str) -> Result<AnyScene, Error> {
+                let (id, rest) = spec.split_once(':').unwrap_or((spec, ""));
+                let params = Parameters::parse(rest)?;
+                $(
+                    if id == <$ty>::default().meta().id {
+                        params.only(id, <$ty>::PARAMETERS)?;
+                        return Ok(AnyScene::$variant(<$ty>::with_parameters(&params)?));
+                    }
+                )*
+                Err(Error::UnknownScene { id: id.to_string(), valid: scene_ids().join(", ") })
+            }
+
+            /// The parameters this scene accepts, with their meanings.
+            pub fn accepts(&self) -> &'static [(&'static str, &'static str)] {
+                match self {
+                    $(AnyScene::$variant(_) => <$ty>::PARAMETERS,)*
+                }
+            }
+
             /// Runs `visitor` on the scene.
             pub fn visit<V: SceneVisitor>(&self, visitor: V) -> V::Output {
                 match self {
@@ -179,16 +209,65 @@ impl AnyScene {
     pub fn period(&self) -> f64 {
         self.visit(Describe).1
     }
+}
 
-    /// The built-in scene with this id, with default parameters.
-    pub fn by_id(id: &str) -> Result<AnyScene, Error> {
-        Self::all()
-            .into_iter()
-            .find(|s| s.meta().id == id)
-            .ok_or_else(|| Error::UnknownScene {
-                id: id.to_string(),
-                valid: scene_ids().join(", "),
-            })
+/// A scene that can be built from named numeric parameters.
+pub trait Parametrised: Sized + Default {
+    /// Every parameter's name and meaning.
+    const PARAMETERS: &'static [(&'static str, &'static str)];
+    /// The scene with these parameters, the others at their defaults.
+    fn with_parameters(params: &Parameters) -> Result<Self, Error>;
+}
+
+/// Named values from a scene specification such as `w0=50,x0=2`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Parameters(Vec<(String, f64)>);
+
+impl Parameters {
+    /// Reads `name=value` pairs separated by commas (an empty text is none).
+    pub fn parse(text: &str) -> Result<Self, Error> {
+        let mut out = Vec::new();
+        for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+            let parsed = item
+                .split_once('=')
+                .and_then(|(n, v)| Some((n.trim(), v.trim().parse::<f64>().ok()?)));
+            match parsed {
+                Some((name, value)) if !name.is_empty() => out.push((name.to_string(), value)),
+                _ => {
+                    return Err(Error::InvalidScene(format!(
+                        "cannot read '{item}': expected name=number"
+                    )));
+                }
+            }
+        }
+        Ok(Self(out))
+    }
+
+    /// The value given for `name`, or `default`.
+    pub fn get(&self, name: &str, default: f64) -> f64 {
+        self.0
+            .iter()
+            .rev()
+            .find(|(n, _)| n == name)
+            .map_or(default, |(_, v)| *v)
+    }
+
+    /// Refuses names that `scene` does not have.
+    pub fn only(&self, scene: &str, allowed: &[(&str, &str)]) -> Result<(), Error> {
+        for (name, _) in &self.0 {
+            if !allowed.iter().any(|(a, _)| a == name) {
+                let valid: Vec<&str> = allowed.iter().map(|(a, _)| *a).collect();
+                return Err(Error::InvalidScene(format!(
+                    "'{scene}' has no parameter '{name}'; its parameters: {}",
+                    if valid.is_empty() {
+                        "none".to_string()
+                    } else {
+                        valid.join(", ")
+                    }
+                )));
+            }
+        }
+        Ok(())
     }
 }
 

@@ -1,0 +1,97 @@
+//! Linear stability against its analytic values, and runs above the limit
+//! that must end early with a clear verdict.
+
+use stepladder::ladder::{Ladder, LadderChoice};
+use stepladder::measure::energy::{EnergySpec, energy_drift};
+use stepladder::measure::order::{DropReason, OrderSpec, global_order};
+use stepladder::measure::stability::{StabilityRecord, stability};
+use stepladder::run::Outcome;
+use stepladder::scene::Harmonic;
+use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, visit_scheme};
+
+struct Stability;
+impl SchemeVisitor for Stability {
+    type Output = StabilityRecord;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> StabilityRecord {
+        stability(scheme)
+    }
+}
+
+fn limit(id: &str) -> StabilityRecord {
+    visit_scheme(id, Stability).unwrap()
+}
+
+/// Every scheme whose one-step map on the oscillator has determinant 1 and
+/// trace `2 - z^2` (the Verlet family and Euler-Cromer) is stable exactly
+/// while `|2 - z^2| < 2`, that is for `z < 2`.
+#[test]
+fn verlet_family_and_euler_cromer_are_stable_up_to_two() {
+    for id in [
+        "euler-cromer",
+        "stormer-verlet",
+        "leapfrog",
+        "velocity-verlet",
+        "position-verlet",
+    ] {
+        let r = limit(id);
+        let z = r.stability_limit.expect("a finite limit");
+        assert!((z - 2.0).abs() < 1e-9, "{id}: {z}");
+        assert_eq!(
+            r.stable_intervals.len(),
+            1,
+            "{id}: {:?}",
+            r.stable_intervals
+        );
+    }
+}
+
+/// Explicit Euler's eigenvalues `1 -+ i z` have modulus `sqrt(1 + z^2) > 1`
+/// for every `z > 0`: stable for no step.
+#[test]
+fn explicit_euler_is_stable_for_no_step() {
+    let r = limit("euler");
+    assert_eq!(r.stability_limit, Some(0.0));
+    assert!(r.stable_intervals.is_empty());
+}
+
+/// `h w0 = 2.5` is beyond velocity Verlet's limit 2: the run must stop as
+/// soon as the state leaves the bound, and say so.
+#[test]
+fn a_stiff_oscillator_above_the_limit_ends_early_with_a_clear_verdict() {
+    let stiff = Harmonic::new(50.0, 1.0, 0.0).unwrap();
+    let r = energy_drift(
+        &VELOCITY_VERLET,
+        &stiff,
+        &EnergySpec {
+            h: Some(0.05),
+            periods: None,
+        },
+    )
+    .unwrap();
+    let Outcome::Unstable { h, step, .. } = r.outcome else {
+        panic!("{:?}", r.outcome)
+    };
+    assert_eq!(h, 0.05);
+    // the larger eigenvalue is 2.67 in modulus (2.5^2/2 - 1 + sqrt(...)): the
+    // state grows by 1e6 within about 15 steps
+    assert!(step < 30, "stopped only after {step} steps");
+    assert!(
+        r.reason.starts_with("unstable at h = 0.05, after"),
+        "{}",
+        r.reason
+    );
+}
+
+#[test]
+fn unstable_coarse_rungs_are_dropped_and_said_to_be() {
+    let stiff = Harmonic::new(50.0, 1.0, 0.0).unwrap();
+    // h0 = 0.06 is z = 3 (unstable), 0.03 is z = 1.5 (stable)
+    let spec = OrderSpec {
+        t_end: Some(10.0),
+        ladder: LadderChoice::Fixed(Ladder::new(0.06, 0.5, 14).unwrap()),
+    };
+    let r = global_order(&VELOCITY_VERLET, &stiff, &spec).unwrap();
+    assert_eq!(r.rungs[0].dropped, Some(DropReason::Unstable));
+    assert!(matches!(r.rungs[0].outcome, Outcome::Unstable { .. }));
+    assert!(r.passed(), "{}", r.reason);
+}
