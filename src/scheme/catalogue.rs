@@ -2,7 +2,7 @@
 //! table) plus one line here; every test, study and report loops over it.
 
 use super::splitting::{EULER_CROMER, POSITION_VERLET, VELOCITY_VERLET};
-use super::{Euler, Leapfrog, Scheme, SchemeMeta, StormerVerlet};
+use super::{Euler, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
 
 /// Something to do with one scheme, whatever its concrete type: the way to
@@ -36,6 +36,7 @@ catalogue![
     Leapfrog,
     VELOCITY_VERLET,
     POSITION_VERLET,
+    Rk4,
 ];
 
 /// Every scheme id, in catalogue order.

@@ -8,11 +8,13 @@
 
 mod catalogue;
 mod euler;
+mod runge_kutta;
 mod splitting;
 mod verlet;
 
 pub use catalogue::{SchemeVisitor, catalogue, scheme_ids, visit_scheme};
 pub use euler::Euler;
+pub use runge_kutta::Rk4;
 pub use splitting::{EULER_CROMER, Flow, POSITION_VERLET, SplittingTable, TABLES, VELOCITY_VERLET};
 pub use verlet::{Leapfrog, StormerVerlet};
 
