@@ -7,15 +7,19 @@
 //! synchronised `(q, v)` at whole steps so they compare like with like.
 
 mod catalogue;
+mod composition;
 mod euler;
 mod runge_kutta;
 mod splitting;
 mod verlet;
 
 pub use catalogue::{SchemeVisitor, catalogue, scheme_ids, visit_scheme};
+pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
 pub use runge_kutta::Rk4;
-pub use splitting::{EULER_CROMER, Flow, POSITION_VERLET, SplittingTable, TABLES, VELOCITY_VERLET};
+pub use splitting::{
+    EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, TABLES, VELOCITY_VERLET,
+};
 pub use verlet::{Leapfrog, StormerVerlet};
 
 use crate::scene::Scene;
