@@ -3,7 +3,7 @@
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, VELOCITY_VERLET};
-use super::{Euler, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
+use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
 
 /// Something to do with one scheme, whatever its concrete type: the way to
@@ -37,6 +37,7 @@ catalogue![
     Leapfrog,
     VELOCITY_VERLET,
     POSITION_VERLET,
+    ImplicitMidpoint,
     Rk4,
     FOREST_RUTH,
     PEFRL,
