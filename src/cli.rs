@@ -380,7 +380,7 @@ fn list(json: bool) {
             m.order.to_string(),
             yn(m.symplectic),
             yn(m.symmetric),
-            m.force_evaluations.to_string(),
+            m.forces_label(),
             m.name.into(),
         ]);
     }

@@ -5,8 +5,9 @@
 //! ladder of step sizes against scenes with exact solutions.
 //!
 //! - [`scheme`]: the catalogue (explicit Euler, Euler-Cromer, Störmer-Verlet,
-//!   leap-frog, velocity and position Verlet) and the [`scheme::Scheme`]
-//!   trait to bring your own.
+//!   leap-frog, velocity and position Verlet, the implicit midpoint rule,
+//!   RK4, PEFRL and the Forest-Ruth, Yoshida and Kahan-Li compositions) and
+//!   the [`scheme::Scheme`] trait to bring your own.
 //! - [`scene`]: the harmonic oscillator and the circular Earth-Sun orbit, with
 //!   exact solutions; the [`scene::Scene`] trait to bring your own.
 //! - [`measure`]: the studies; [`measure::order::global_order`] measures the

@@ -334,7 +334,7 @@ fn scheme_table() -> String {
             m.order.to_string(),
             yes_no(m.symplectic).into(),
             yes_no(m.symmetric).into(),
-            m.force_evaluations.to_string(),
+            m.forces_label(),
             m.reference.into(),
         ]);
     }

@@ -1,8 +1,9 @@
 //! The one registry of every scheme. Adding a scheme is one file (or one
 //! table) plus one line here; every test, study and report loops over it.
 
-use super::splitting::{EULER_CROMER, POSITION_VERLET, VELOCITY_VERLET};
-use super::{Euler, Leapfrog, Scheme, SchemeMeta, StormerVerlet};
+use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
+use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, VELOCITY_VERLET};
+use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
 
 /// Something to do with one scheme, whatever its concrete type: the way to
@@ -36,6 +37,12 @@ catalogue![
     Leapfrog,
     VELOCITY_VERLET,
     POSITION_VERLET,
+    ImplicitMidpoint,
+    Rk4,
+    FOREST_RUTH,
+    PEFRL,
+    YOSHIDA6,
+    KAHAN_LI8,
 ];
 
 /// Every scheme id, in catalogue order.

@@ -7,13 +7,21 @@
 //! synchronised `(q, v)` at whole steps so they compare like with like.
 
 mod catalogue;
+mod composition;
 mod euler;
+mod implicit;
+mod runge_kutta;
 mod splitting;
 mod verlet;
 
 pub use catalogue::{SchemeVisitor, catalogue, scheme_ids, visit_scheme};
+pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
-pub use splitting::{EULER_CROMER, Flow, POSITION_VERLET, SplittingTable, TABLES, VELOCITY_VERLET};
+pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
+pub use runge_kutta::Rk4;
+pub use splitting::{
+    EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, TABLES, VELOCITY_VERLET,
+};
 pub use verlet::{Leapfrog, StormerVerlet};
 
 use crate::scene::Scene;
@@ -34,7 +42,10 @@ pub struct SchemeMeta {
     pub symplectic: bool,
     /// Stepping with `-h` undoes a step with `h` (time-symmetric, reversible).
     pub symmetric: bool,
-    /// Force evaluations per step, once the scheme has started.
+    /// Force evaluations per step, once the scheme has started; for an
+    /// implicit scheme, per iteration of its solve, since the iterations a
+    /// step needs depend on the step and the scene (they are read off the
+    /// carry with [`Scheme::solver_iterations`]).
     pub force_evaluations: u32,
     /// The step solves an equation (implicit scheme).
     pub implicit: bool,
@@ -64,6 +75,18 @@ pub const VERLET_PHASE: Option<PhaseError> = Some(PhaseError {
     coefficient: 1.0 / 24.0,
     power: 2,
 });
+
+impl SchemeMeta {
+    /// `force_evaluations` with its unit: "4" per step, or "1 per iteration"
+    /// for an implicit scheme.
+    pub fn forces_label(&self) -> String {
+        if self.implicit {
+            format!("{} per iteration", self.force_evaluations)
+        } else {
+            self.force_evaluations.to_string()
+        }
+    }
+}
 
 /// Why a single step could not be completed (an implicit solve that did not
 /// converge, say). A blow-up is not a failure of the step: it is detected by
@@ -115,6 +138,16 @@ pub trait Scheme {
     /// The synchronised `(q, v)` at the carry's whole step, without a force
     /// evaluation.
     fn state<R: Real, const D: usize>(&self, carry: &Self::Carry<R, D>, h: R) -> State<D, R>;
+
+    /// Iterations an implicit scheme's solves have taken since `start`, read
+    /// off the carry (each costs `meta().force_evaluations` evaluations);
+    /// `None` for an explicit scheme, whose cost per step is fixed.
+    fn solver_iterations<R: Real, const D: usize>(
+        &self,
+        _carry: &Self::Carry<R, D>,
+    ) -> Option<u64> {
+        None
+    }
 }
 
 /// The carry of a one-step scheme that reuses the last acceleration: the
