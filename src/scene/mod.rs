@@ -10,7 +10,7 @@ mod kepler;
 
 pub use counted::Counted;
 pub use harmonic::Harmonic;
-pub use kepler::KeplerCircular;
+pub use kepler::{KeplerCircular, KeplerEccentric};
 
 use crate::error::Error;
 use crate::state::{Real, State};
