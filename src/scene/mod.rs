@@ -155,7 +155,11 @@ macro_rules! scenes {
     };
 }
 
-scenes![Harmonic(Harmonic, 1), KeplerCircular(KeplerCircular, 2)];
+scenes![
+    Harmonic(Harmonic, 1),
+    KeplerCircular(KeplerCircular, 2),
+    KeplerEccentric(KeplerEccentric, 2),
+];
 
 /// Reads `(metadata, period)` off any scene.
 struct Describe;
