@@ -62,6 +62,274 @@ impl Scene<2> for KeplerCircular {
     }
 }
 
+/// An eccentric orbit of eccentricity `e` about the Sun's `GM = 4 pi^2`, with
+/// semi-major axis `a = 1` AU (period one year), started at pericentre:
+/// `r0 = (a (1 - e), 0)`, `v0 = (0, sqrt(GM/a (1 + e)/(1 - e)))`.
+///
+/// The exact solution follows the ellipse through the eccentric anomaly `E`
+/// (Murray and Dermott, *Solar System Dynamics*, 2.4):
+///
+/// - the ellipse with its focus at the origin and pericentre on `+x` is
+///   `x = a (cos E - e)`, `y = b sin E`, `b = a sqrt(1 - e^2)`, and then
+///   `|r| = a (1 - e cos E)`;
+/// - the area law turns time into Kepler's equation `E - e sin E = M`, with
+///   mean anomaly `M = n t` and mean motion `n = 2 pi / period`;
+/// - differentiating it, `(1 - e cos E) dE/dt = n`, so the velocity is
+///   `v = dE/dt (-a sin E, b cos E)`.
+///
+/// The scene is hard where circular orbits are easy: near pericentre the
+/// force is `((1 + e)/(1 - e))^2` times its strength at apocentre and acts
+/// over a fraction `~(1 - e)^(3/2)` of the period, so a fixed step resolves
+/// that passage poorly. `e = 0.6` is the standard test of geometric
+/// integration (Hairer, Lubich and Wanner, *Geometric Numerical Integration*,
+/// I.2.3).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KeplerEccentric {
+    e: f64,
+}
+
+/// The semi-major axis in AU: with `GM = 4 pi^2` it makes the period one year.
+const SEMI_MAJOR_AXIS: f64 = 1.0;
+
+impl Default for KeplerEccentric {
+    /// `e = 0.6`, the standard eccentric test orbit.
+    fn default() -> Self {
+        Self { e: 0.6 }
+    }
+}
+
+impl KeplerEccentric {
+    /// An orbit of eccentricity `0 <= e < 1` (`e = 0` is the circle of
+    /// [`KeplerCircular`]; `e = 1` would be a radial fall into the Sun).
+    ///
+    /// ```
+    /// use stepladder::scene::{KeplerEccentric, Scene};
+    /// let orbit = KeplerEccentric::new(0.9).unwrap();
+    /// assert_eq!(orbit.period(), 1.0);
+    /// assert!((orbit.initial().q[0] - 0.1).abs() < 1e-15);
+    /// assert!(KeplerEccentric::new(1.0).is_err());
+    /// ```
+    pub fn new(e: f64) -> Result<Self, Error> {
+        // written so that NaN fails the test as well
+        if (0.0..1.0).contains(&e) {
+            Ok(Self { e })
+        } else {
+            Err(Error::InvalidParameter {
+                name: "e",
+                value: e,
+                expected: "an eccentricity in [0, 1) (0 is a circle, 1 is no longer an ellipse)",
+            })
+        }
+    }
+
+    /// The eccentricity `e`.
+    pub fn eccentricity(&self) -> f64 {
+        self.e
+    }
+
+    /// The mean anomaly `M = 2 pi t / period`, reduced to `(-pi, pi]`.
+    ///
+    /// The whole periods are removed from `t / period` before multiplying by
+    /// `2 pi`: `t - round(t)` is exact in floating point, so `M` keeps its full
+    /// relative accuracy however long the run, where `2 pi t` reduced
+    /// afterwards would carry the rounding of `2 pi t` itself.
+    fn mean_anomaly(&self, t: f64) -> f64 {
+        let phase = t / self.period();
+        let mut fraction = phase - phase.round();
+        if fraction <= -0.5 {
+            fraction += 1.0;
+        }
+        TAU * fraction
+    }
+}
+
+impl Parametrised for KeplerEccentric {
+    const PARAMETERS: &'static [(&'static str, &'static str)] =
+        &[("e", "eccentricity in [0, 1) (default 0.6)")];
+    fn with_parameters(p: &Parameters) -> Result<Self, Error> {
+        Self::new(p.get("e", Self::default().e))
+    }
+}
+
+impl Scene<2> for KeplerEccentric {
+    fn meta(&self) -> SceneMeta {
+        SceneMeta {
+            id: "kepler-eccentric",
+            name: "eccentric Kepler orbit",
+            dimension: 2,
+            parameters: format!(
+                "GM = 4 pi^2 AU^3/yr^2, a = 1 AU, e = {}, started at pericentre on +x",
+                self.e
+            ),
+            reference: "r'' = -GM r/|r|^3; r = a (cos E - e, sqrt(1-e^2) sin E), E - e sin E = 2 pi t (Murray & Dermott 2.4; Hairer, Lubich, Wanner I.2.3)",
+        }
+    }
+
+    fn initial(&self) -> State<2> {
+        let (a, e) = (SEMI_MAJOR_AXIS, self.e);
+        // vis-viva at pericentre: v^2 = GM (2/r - 1/a) with r = a (1 - e)
+        let v = (GM_SUN / a * (1.0 + e) / (1.0 - e)).sqrt();
+        State::new(Vector2::new(a * (1.0 - e), 0.0), Vector2::new(0.0, v))
+    }
+
+    #[inline(always)]
+    fn acceleration<R: Real>(&self, q: &SVector<R, 2>) -> SVector<R, 2> {
+        let r2 = q.norm_squared();
+        q * (-R::of(GM_SUN) / (r2 * r2.sqrt()))
+    }
+
+    #[inline(always)]
+    fn potential<R: Real>(&self, q: &SVector<R, 2>) -> R {
+        -R::of(GM_SUN) / q.norm()
+    }
+
+    fn period(&self) -> f64 {
+        // Kepler's third law, 2 pi sqrt(a^3 / GM), with a = 1 and GM = 4 pi^2
+        1.0
+    }
+
+    fn exact(&self, t: f64) -> Option<State<2>> {
+        let (a, e) = (SEMI_MAJOR_AXIS, self.e);
+        let anomaly = eccentric_anomaly(self.mean_anomaly(t), e).anomaly;
+        let (sin, cos) = anomaly.sin_cos();
+        // half-angle forms: near pericentre cos E ~ 1 and both 1 - e cos E and
+        // cos E - e would lose to cancellation what these keep
+        let h2 = 2.0 * (0.5 * anomaly).sin().powi(2); // 1 - cos E
+        let radius = (1.0 - e) + e * h2; // |r| / a = 1 - e cos E
+        let b = a * ((1.0 - e) * (1.0 + e)).sqrt();
+        let rate = self.frequency() / radius; // dE/dt
+        Some(State::new(
+            Vector2::new(a * ((1.0 - e) - h2), b * sin),
+            Vector2::new(-a * sin * rate, b * cos * rate),
+        ))
+    }
+}
+
+/// Most iterations [`eccentric_anomaly`] takes: a hard stop far above the
+/// six its Newton iteration needs (see the tests), leaving room for the
+/// bisections round-off might force.
+const KEPLER_MAX_ITERATIONS: u32 = 100;
+
+/// A solution of Kepler's equation and what it cost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Anomaly {
+    /// The eccentric anomaly `E`.
+    anomaly: f64,
+    /// Evaluations of Kepler's equation spent.
+    iterations: u32,
+    /// The stopping criterion was met within [`KEPLER_MAX_ITERATIONS`].
+    converged: bool,
+}
+
+/// Solves Kepler's equation `f(E) = E - e sin E - M = 0` for `0 <= e < 1` and
+/// `M` in `[-pi, pi]`, to round-off.
+///
+/// `f` is odd, so the iteration runs on `|M|`. On `[0, pi]` `f` is increasing
+/// (`f' = 1 - e cos E >= 1 - e > 0`) and convex (`f'' = e sin E >= 0`), so
+/// Newton's method started at a point where `f >= 0` decreases monotonically
+/// onto the root and never overshoots (Fourier's condition). The start is the
+/// smallest of four such points, with `M = |M|`:
+///
+/// - `pi`: `f(pi) = pi - M`;
+/// - `M + e`: `f = e (1 - sin(M + e))`;
+/// - `M / (1 - e)`, tight where `E ~ M / (1 - e)` (near pericentre, `e`
+///   well below 1): `f = e (x - sin x)` at `x = M / (1 - e)`;
+/// - `(12 M / e)^(1/3)`, tight near pericentre as `e -> 1`, where
+///   `E - e sin E ~ E^3 / 6`: `x - sin x >= x^3/6 (1 - x^2/20) >= x^3 / 12`
+///   for `x <= pi`, so `f >= e x^3 / 12 - M = 0`.
+///
+/// Convergence: Newton's error after a step `s` is at most
+/// `max f'' / (2 f') s^2 <= e s^2 / (2 f')`; the iteration stops once that is
+/// below `eps |E|`. It also stops when `f <= 0`, which exact arithmetic never
+/// reaches from above: only round-off does. `f` and `f'` are evaluated without
+/// cancellation (see [`kepler_function`]), so both tests are reachable. Should
+/// round-off ever push an iterate out of the bracket `[|M|, start]`, that
+/// iteration bisects instead.
+fn eccentric_anomaly(m: f64, e: f64) -> Anomaly {
+    if m.is_nan() {
+        // a NaN time has no anomaly; the bracket below would invent one
+        return Anomaly {
+            anomaly: f64::NAN,
+            iterations: 0,
+            converged: false,
+        };
+    }
+    let target = m.abs();
+    let mut lo = target; // f(|M|) = -e sin |M| <= 0
+    let mut hi = [
+        PI,
+        target + e,
+        target / (1.0 - e),
+        (12.0 * target / e).cbrt(),
+    ]
+    .into_iter()
+    .filter(|x| !x.is_nan())
+    .fold(f64::INFINITY, f64::min);
+    let mut x = hi;
+    for iterations in 1..=KEPLER_MAX_ITERATIONS {
+        let (f, slope) = kepler_function(x, e, target);
+        if f > 0.0 {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let step = f / slope;
+        let mut next = x - step;
+        if !(lo <= next && next <= hi) {
+            next = 0.5 * (lo + hi);
+        }
+        let converged = f <= 0.0
+            || e * step * step <= 2.0 * slope * f64::EPSILON * next
+            || hi - lo <= f64::EPSILON * hi;
+        x = next;
+        if converged {
+            return Anomaly {
+                anomaly: x.copysign(m),
+                iterations,
+                converged: true,
+            };
+        }
+    }
+    Anomaly {
+        anomaly: x.copysign(m),
+        iterations: KEPLER_MAX_ITERATIONS,
+        converged: false,
+    }
+}
+
+/// Kepler's function `f(E) = E - e sin E - M` and its slope `f'(E) = 1 - e cos E`
+/// for `E >= 0`, as sums of non-negative terms:
+/// `f = (1 - e) E + e (E - sin E) - M` and `f' = (1 - e) + 2 e sin^2(E/2)`.
+///
+/// Written directly, `E - e sin E` near pericentre at `e -> 1` is the small
+/// difference of two nearly equal numbers and loses `-log10(1 - e)` digits;
+/// so would `1 - e cos E`. Here only the final `- M` cancels, leaving an error
+/// of a few `eps M`, and `M / f' <= E` on `[0, pi]`, so Newton's step is
+/// accurate to a few `eps E`.
+fn kepler_function(x: f64, e: f64, m: f64) -> (f64, f64) {
+    let f = (1.0 - e) * x + e * x_minus_sin(x) - m;
+    let slope = (1.0 - e) + 2.0 * e * (0.5 * x).sin().powi(2);
+    (f, slope)
+}
+
+/// `x - sin x` for `x >= 0` without cancellation: below 1 by its Taylor series
+/// `x^3/3! - x^5/5! + ...`, summed in nested form to the `x^21` term (the
+/// first term left out, `x^23/23!`, is below `1e-22 x^3` there); above 1
+/// directly, where it loses at most a factor `1 / (1 - sin 1) ~ 6` in
+/// relative accuracy.
+fn x_minus_sin(x: f64) -> f64 {
+    if x >= 1.0 {
+        return x - x.sin();
+    }
+    let x2 = x * x;
+    // the term x^(2k+1)/(2k+1)! times -x^2 / ((2k+2)(2k+3)) gives the next one
+    let series = [20.0, 42.0, 72.0, 110.0, 156.0, 210.0, 272.0, 342.0, 420.0]
+        .iter()
+        .rev()
+        .fold(1.0, |acc, d| 1.0 - x2 / d * acc);
+    x * x2 / 6.0 * series
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -78,5 +346,298 @@ mod tests {
         }
         assert_eq!(k.exact(0.0).unwrap(), k.initial());
         assert!((k.scale() - 2f64.sqrt()).abs() < 1e-15);
+    }
+
+    /// The eccentricities the solution is checked at: the circle, the default,
+    /// and ever more demanding pericentre passages.
+    const ECCENTRICITIES: [f64; 6] = [0.0, 0.1, 0.6, 0.9, 0.99, 0.999];
+
+    const EPS: f64 = f64::EPSILON;
+
+    fn orbit(e: f64) -> KeplerEccentric {
+        KeplerEccentric::new(e).unwrap()
+    }
+
+    /// Times spread over three periods, plus a cluster around pericentre
+    /// (t = 0 and t = 1), where the high-eccentricity orbits change fastest.
+    fn times() -> impl Iterator<Item = f64> {
+        let spread = (0..3000).map(|k| 3.0 * k as f64 / 3000.0 + 1e-3 * (k % 7) as f64);
+        let pericentre = (-200..=200).flat_map(|k| [1e-6 * k as f64, 1.0 + 3e-5 * k as f64]);
+        spread.chain(pericentre)
+    }
+
+    #[test]
+    fn zero_eccentricity_is_the_circular_orbit() {
+        let (e0, circle) = (orbit(0.0), KeplerCircular);
+        assert_eq!(e0.initial(), circle.initial());
+        assert_eq!(e0.period(), circle.period());
+        for t in times() {
+            let (a, b) = (e0.exact(t).unwrap(), circle.exact(t).unwrap());
+            // the circle's sin(2 pi t) carries the rounding of its argument,
+            // about eps 2 pi t; the reduced anomaly here carries eps pi
+            assert!(
+                circle.phase_distance(&a, &b) <= 4.0 * EPS * (1.0 + TAU * t.abs()),
+                "t = {t}: {a:?} against {b:?}"
+            );
+            assert_eq!(e0.acceleration(&a.q), circle.acceleration(&a.q));
+            assert_eq!(e0.potential(&a.q), circle.potential(&a.q));
+        }
+    }
+
+    #[test]
+    fn exact_solution_starts_at_pericentre_with_the_vis_viva_speed() {
+        for e in ECCENTRICITIES {
+            let k = orbit(e);
+            // pericentre r = a (1 - e); vis-viva v^2 = GM (2/r - 1/a), a = 1
+            let r = 1.0 - e;
+            let v = (GM_SUN * (2.0 / r - 1.0)).sqrt();
+            for s in [k.initial(), k.exact(0.0).unwrap()] {
+                assert_eq!(s.q, Vector2::new(r, 0.0), "e = {e}");
+                assert_eq!(s.v[0], 0.0, "e = {e}");
+                assert!(
+                    (s.v[1] - v).abs() <= 4.0 * EPS * v,
+                    "e = {e}: {s:?}, v = {v}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn exact_solution_conserves_energy_and_angular_momentum() {
+        for e in [0.1, 0.6, 0.9, 0.99] {
+            let k = orbit(e);
+            // a = 1: energy -GM / 2a, angular momentum sqrt(GM a (1 - e^2))
+            let energy = -GM_SUN / 2.0;
+            let momentum = (GM_SUN * (1.0 - e * e)).sqrt();
+            for t in times() {
+                let s = k.exact(t).unwrap();
+                let (kinetic, potential) = (0.5 * s.v.norm_squared(), GM_SUN / s.q.norm());
+                // each component carries a few eps of relative error (sin, cos,
+                // sqrt, a division), the invariants a few more roundings: 8 eps
+                // of the terms summed, which near pericentre cancel to 1/200
+                let de = (kinetic - potential - energy).abs();
+                assert!(
+                    de <= 8.0 * EPS * (kinetic + potential),
+                    "e = {e}, t = {t}: energy off by {de:e}"
+                );
+                let l = s.q[0] * s.v[1] - s.q[1] * s.v[0];
+                let dl = (l - momentum).abs();
+                assert!(
+                    dl <= 8.0 * EPS * s.q.norm() * s.v.norm(),
+                    "e = {e}, t = {t}: angular momentum off by {dl:e}"
+                );
+            }
+        }
+    }
+
+    /// Mean anomalies over a dense grid of `(-pi, pi]`, plus tiny ones of both
+    /// signs down to 1e-300, where the anomaly near pericentre is hardest.
+    fn mean_anomalies(n: usize) -> impl Iterator<Item = f64> {
+        let grid = (1..=n).map(move |k| -PI + TAU * k as f64 / n as f64);
+        let tiny = (0..=300).flat_map(|p| {
+            let m = 10f64.powi(-p);
+            [m, -0.37 * m]
+        });
+        grid.chain(tiny).chain([0.0, PI])
+    }
+
+    #[test]
+    fn keplers_equation_is_solved_to_round_off() {
+        for e in [0.0, 0.1, 0.3, 0.5, 0.6, 0.9, 0.99, 0.999] {
+            for m in mean_anomalies(20_000) {
+                let big_e = eccentric_anomaly(m, e).anomaly;
+                // E - M = e sin E lies in [0, e] with the sign of M
+                assert!(
+                    (big_e - m) * m.signum() >= 0.0 && (big_e - m).abs() <= e,
+                    "e = {e}, M = {m}: E = {big_e}"
+                );
+                // evaluating E - e sin E - M in floating point costs about
+                // 1.5 eps |E| + 0.5 eps |M|, and E within an ulp or two of the
+                // root adds (1 + e) 2 eps |E|: 4 eps (|E| + |M|) bounds both
+                let residual = big_e - e * big_e.sin() - m;
+                assert!(
+                    residual.abs() <= 4.0 * EPS * (big_e.abs() + m.abs()),
+                    "e = {e}, M = {m}: residual {residual:e}"
+                );
+            }
+        }
+    }
+
+    /// Near pericentre at high eccentricity `E - e sin E` is the small
+    /// difference of two nearly equal numbers: solved from it naively, `E`
+    /// would be off by some `eps E / (1 - e cos E)`, a thousand times round-off
+    /// at `e = 0.999`. Here `M` is formed from a known `E` as
+    /// `(1 - e) E + e (E - sin E)`, a sum of positive terms with the sine's
+    /// Taylor series summed term by term, so it is good to 2 eps; since
+    /// `dE/dM = 1 / (1 - e cos E)` and `M / (1 - e cos E) <= E`, that moves `E`
+    /// by at most 2 eps E, and the solver's own few eps come on top.
+    #[test]
+    fn eccentric_anomaly_is_accurate_near_pericentre_at_high_eccentricity() {
+        let x_minus_sin_by_terms = |x: f64| {
+            let (mut term, mut sum) = (x * x * x / 6.0, 0.0);
+            for k in 2..30 {
+                sum += term;
+                term *= -x * x / ((2 * k) as f64 * (2 * k + 1) as f64);
+            }
+            sum
+        };
+        for e in [0.9, 0.99, 0.999, 0.9999] {
+            for j in 0..=400 {
+                let big_e = 10f64.powf(-8.0 + 8.0 * j as f64 / 400.0); // 1e-8 .. 1
+                let m = (1.0 - e) * big_e + e * x_minus_sin_by_terms(big_e);
+                let solved = eccentric_anomaly(m, e).anomaly;
+                assert!(
+                    (solved - big_e).abs() <= 8.0 * EPS * big_e,
+                    "e = {e}, E = {big_e}: solved {solved}, off by {:.1} eps E",
+                    (solved - big_e).abs() / (EPS * big_e)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn newton_iteration_converges_in_few_steps_for_any_anomaly() {
+        // From the start, within a factor 2^(1/3) of the root where the cubic
+        // bound is used and closer elsewhere, Newton's relative error goes
+        // roughly 0.3, 0.1, 1e-2, 1e-4, 1e-8, 1e-16: six steps. One more, two
+        // for slack: eight.
+        for e in [
+            0.0,
+            0.01,
+            0.1,
+            0.3,
+            0.5,
+            0.6,
+            0.8,
+            0.9,
+            0.95,
+            0.99,
+            0.995,
+            0.999,
+            0.9999,
+            1.0 - 1e-9,
+        ] {
+            let mut worst = 0;
+            for m in mean_anomalies(100_000) {
+                let s = eccentric_anomaly(m, e);
+                assert!(
+                    s.converged && s.anomaly.is_finite(),
+                    "e = {e}, M = {m}: {s:?}"
+                );
+                worst = worst.max(s.iterations);
+            }
+            assert!(worst <= 8, "e = {e}: {worst} iterations");
+        }
+        let nan = eccentric_anomaly(f64::NAN, 0.5);
+        assert!(nan.anomaly.is_nan() && !nan.converged);
+    }
+
+    #[test]
+    fn x_minus_sin_agrees_with_its_definition() {
+        for k in 0..=4000 {
+            let x = PI * k as f64 / 4000.0;
+            // the direct difference is off by at most eps x (the rounding of
+            // sin x and of the subtraction); a wrong series term is off by
+            // x^(2k+1)/(2k+1)!, far more near x = 1
+            assert!((x_minus_sin(x) - (x - x.sin())).abs() <= EPS * x, "x = {x}");
+        }
+        // and for small x it is x^3/6 (1 - x^2/20), up to x^7/5040
+        for x in [1e-100, 1e-8, 1e-3, 0.1] {
+            let leading = x * x * x / 6.0 * (1.0 - x * x / 20.0);
+            assert!((x_minus_sin(x) - leading).abs() <= x.powi(7) / 5040.0 + 2.0 * EPS * leading);
+        }
+    }
+
+    #[test]
+    fn exact_solution_is_periodic_and_stays_accurate_for_long_times() {
+        for e in ECCENTRICITIES {
+            let k = orbit(e);
+            // dyadic times: t + n is exact, so the reduced anomaly is identical
+            for j in 0..64 {
+                let t = j as f64 / 64.0;
+                let s = k.exact(t).unwrap();
+                for n in [1.0, -1.0, 7.0, 1e6, 2f64.powi(40)] {
+                    assert_eq!(k.exact(t + n).unwrap(), s, "e = {e}, t = {t} + {n}");
+                }
+            }
+            // other times: t + 1 rounds by up to eps/2 in t, so the states may
+            // differ by the phase-space speed sqrt(|v|^2 + |a/w|^2) times that,
+            // plus their own round-off
+            for j in 0..1000 {
+                let t = 0.001 * j as f64 + 1.0 / 3.0e3;
+                let (a, b) = (k.exact(t).unwrap(), k.exact(t + 1.0).unwrap());
+                let w = k.frequency();
+                let speed = (a.v.norm_squared() + (k.acceleration(&a.q) / w).norm_squared()).sqrt();
+                let bound = speed * EPS + 16.0 * EPS * k.scale();
+                assert!(k.phase_distance(&a, &b) <= bound, "e = {e}, t = {t}");
+            }
+        }
+    }
+
+    /// `r'' = a(r)`: the eighth-order central difference of the exact
+    /// velocity must give the acceleration.
+    ///
+    /// The orbit is analytic in time up to complex collisions `1 = e cos E` at
+    /// `E = +-i arccosh(1/e)`, i.e. at times `+-i rho` from each pericentre,
+    /// `n rho = arccosh(1/e) - sqrt(1 - e^2)`. Derivatives then grow like
+    /// `|v^(9)| ~ 9! |a| / rho^8`, so the formula's truncation error
+    /// `h^8 |v^(9)| / 630` is about `576 (h / rho)^8 |a|`; with `h = rho / 64`
+    /// that is `2e-12 |a|`, allowed ten times over at the pericentre `|a|`, the
+    /// largest. Round-off: each velocity is off by some `8 eps |v|`, and by
+    /// `|a| eps t` through the rounding of its time; the stencil's weights sum
+    /// to 2.08 in magnitude and are divided by `h`. The force itself is off by
+    /// some `10 eps |a|`.
+    #[test]
+    fn exact_solution_satisfies_newtons_equation() {
+        const WEIGHTS: [f64; 4] = [4.0 / 5.0, -1.0 / 5.0, 4.0 / 105.0, -1.0 / 280.0];
+        for e in [0.1, 0.6, 0.9, 0.99] {
+            let k = orbit(e);
+            let n = k.frequency();
+            let rho = ((1.0 / e).acosh() - (1.0 - e * e).sqrt()) / n;
+            let h = rho / 64.0;
+            let peri = k.initial();
+            let (v_max, a_max) = (peri.v.norm(), k.acceleration(&peri.q).norm());
+            let pericentre = (-64..=64).map(|j| j as f64 * rho / 16.0);
+            let spread = (0..200).map(|j| 0.005 * j as f64 + 0.0013);
+            for t in pericentre.chain(spread) {
+                let s = k.exact(t).unwrap();
+                let dv = (1..=4).fold(Vector2::zeros(), |acc, j| {
+                    let dt = j as f64 * h;
+                    acc + (k.exact(t + dt).unwrap().v - k.exact(t - dt).unwrap().v) * WEIGHTS[j - 1]
+                }) / h;
+                let a = k.acceleration(&s.q);
+                let truncation = 10.0 * 576.0 * 64f64.powi(-8) * a_max;
+                let round_off = 2.08 * (8.0 * EPS * v_max + a_max * EPS * (t.abs() + 4.0 * h)) / h
+                    + 10.0 * EPS * a.norm();
+                let miss = (dv - a).norm();
+                assert!(
+                    miss <= truncation + round_off,
+                    "e = {e}, t = {t}: {miss:e} against {:e} + {:e}",
+                    truncation,
+                    round_off
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn rejects_eccentricities_that_are_not_ellipses() {
+        for e in [
+            -0.1,
+            -1e-300,
+            1.0,
+            1.5,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ] {
+            let err = KeplerEccentric::new(e).unwrap_err().to_string();
+            assert!(err.contains("[0, 1)"), "e = {e}: {err}");
+        }
+        for e in [0.0, 0.6, 1.0 - 1e-12] {
+            assert_eq!(KeplerEccentric::new(e).unwrap().eccentricity(), e);
+        }
+        assert_eq!(KeplerEccentric::default().eccentricity(), 0.6);
+        assert_eq!(KeplerEccentric::default().meta().id, "kepler-eccentric");
     }
 }

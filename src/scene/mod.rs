@@ -10,7 +10,7 @@ mod kepler;
 
 pub use counted::Counted;
 pub use harmonic::Harmonic;
-pub use kepler::KeplerCircular;
+pub use kepler::{KeplerCircular, KeplerEccentric};
 
 use crate::error::Error;
 use crate::state::{Real, State};
@@ -185,7 +185,11 @@ macro_rules! scenes {
     };
 }
 
-scenes![Harmonic(Harmonic, 1), KeplerCircular(KeplerCircular, 2)];
+scenes![
+    Harmonic(Harmonic, 1),
+    KeplerCircular(KeplerCircular, 2),
+    KeplerEccentric(KeplerEccentric, 2),
+];
 
 /// Reads `(metadata, period)` off any scene.
 struct Describe;
