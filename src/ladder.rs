@@ -24,12 +24,11 @@ pub const AUTO_START: f64 = 1.0 / 8.0;
 /// ladder to a fraction of a second.
 pub const AUTO_MAX_RUNG_STEPS: u64 = 1 << 23;
 
-/// The automatic ladder stops refining once its window holds this many rungs.
-pub const AUTO_TARGET_WINDOW: usize = 12;
-
 /// The automatic ladder's ratio for a scheme of order `p`: halving up to
 /// order 2; beyond, `2^(-2/p)`, so the error still falls by about 4 per rung
-/// and a high-order scheme gets many rungs before the round-off floor.
+/// and a high-order scheme gets enough rungs between its pre-asymptotic
+/// regime and the round-off floor. (Finer ratios make neighbouring rungs so
+/// alike that round-off dominates their local orders.)
 pub fn auto_ratio(order: u32) -> f64 {
     if order <= 2 {
         0.5
@@ -43,9 +42,9 @@ pub fn auto_ratio(order: u32) -> f64 {
 #[serde(rename_all = "kebab-case", tag = "kind")]
 pub enum LadderChoice {
     /// Chosen from the scheme and the data: start at [`AUTO_START`] periods,
-    /// refine by [`auto_ratio`] until the asymptotic window is long enough,
-    /// the round-off floor is reached, or a rung would exceed
-    /// [`AUTO_MAX_RUNG_STEPS`].
+    /// refine by [`auto_ratio`] until the asymptotic window is full
+    /// ([`crate::tolerance::WINDOW_RUNGS`] rungs), the round-off floor is
+    /// reached, or a rung would exceed [`AUTO_MAX_RUNG_STEPS`].
     Auto,
     /// Exactly these rungs.
     Fixed(Ladder),

@@ -10,16 +10,34 @@
 //! `ln e = ln C + p ln h + b1 (h/H) + b2 (h/H)^2`   (H the window's largest h),
 //!
 //! which is `ln(C h^p (1 + c1 h + c2 h^2 + ...))` to second order, and takes
-//! `p` with its Student's t interval. The interval is widened by a measured
-//! systematic: how far `p` moves when the window loses its coarsest or its
-//! finest rung, which is what the choice of window contributes.
+//! `p` with its Student's t interval. Each
+//! correction enters only when the data call for it (forward selection by a
+//! partial F-test at 5%): where round-off noise hides the curvature, as in
+//! the short windows of high-order schemes, extra terms would only trade it
+//! for variance. The interval is widened by a measured systematic: how far
+//! `p` moves when the window loses one or two of its coarsest or its finest
+//! rungs, which is what the choice of window contributes.
 
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
-use statrs::distribution::{ContinuousCDF, StudentsT};
+use statrs::distribution::{ContinuousCDF, FisherSnedecor, StudentsT};
 
-/// Coefficients of the expansion fit: `ln C`, `p`, `b1`, `b2`.
-pub const EXPANSION_TERMS: usize = 4;
+/// Most correction terms the fit may use.
+pub const MAX_CORRECTIONS: usize = 2;
+
+/// Fewest points an order fit takes: two coefficients, the corrections,
+/// and two degrees of freedom.
+pub const MIN_POINTS: usize = MAX_CORRECTIONS + 4;
+
+/// A correction term the fit may add to `ln e = ln C + p ln h`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Correction {
+    /// `b h/H`: the next term of a non-symmetric scheme's error expansion.
+    Linear,
+    /// `b (h/H)^2`: the next term of a symmetric scheme's.
+    Quadratic,
+}
 
 /// The order of accuracy fitted over a window of rungs.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -28,9 +46,12 @@ pub struct OrderFit {
     pub order: f64,
     /// Its standard error.
     pub standard_error: f64,
+    /// The correction terms the data called for, in the order they entered.
+    pub corrections: [Option<Correction>; MAX_CORRECTIONS],
     /// Student's t quantile at 0.975 for the fit's degrees of freedom.
     pub t_quantile: f64,
-    /// Largest shift of `p` when the window loses its first or last rung.
+    /// Largest shift of `p` when the window loses one or two rungs at
+    /// either end.
     pub systematic: f64,
     /// `order -+ (t_quantile * standard_error + systematic)`.
     pub ci95: [f64; 2],
@@ -41,46 +62,97 @@ pub struct OrderFit {
 }
 
 /// Fits the order over `points = (h, e)` (positive, finite). Returns `None`
-/// with fewer than [`EXPANSION_TERMS`] + 2 points or a degenerate design.
+/// with fewer than [`MIN_POINTS`] points or a degenerate design.
 pub fn order_fit(points: &[(f64, f64)]) -> Option<OrderFit> {
     let n = points.len();
-    if n < EXPANSION_TERMS + 2 {
+    if n < MIN_POINTS {
         return None;
     }
-    let (order, standard_error) = expansion(points)?;
-    let t_quantile = t975(n - EXPANSION_TERMS);
-    let systematic = [&points[1..], &points[..n - 1]]
-        .iter()
-        .filter_map(|sub| expansion(sub))
-        .map(|(p, _)| (p - order).abs())
-        .fold(0.0, f64::max);
-    let half = t_quantile * standard_error + systematic;
+    let line = power_law(points)?;
+    // forward selection: add the correction that explains most, while it
+    // explains significantly more (partial F-test at 5%)
+    let mut chosen: Vec<Correction> = Vec::new();
+    let mut fit = expansion(points, &chosen)?;
+    while chosen.len() < MAX_CORRECTIONS {
+        let best = [Correction::Linear, Correction::Quadratic]
+            .into_iter()
+            .filter(|c| !chosen.contains(c))
+            .filter_map(|c| {
+                let mut with = chosen.clone();
+                with.push(c);
+                expansion(points, &with).map(|f| (c, f))
+            })
+            .min_by(|a, b| a.1.residual.total_cmp(&b.1.residual));
+        let Some((candidate, richer)) = best else {
+            break;
+        };
+        let f = (fit.residual - richer.residual) / (richer.residual / richer.dof as f64);
+        let critical = FisherSnedecor::new(1.0, richer.dof as f64)
+            .expect("positive degrees of freedom")
+            .inverse_cdf(0.95);
+        if f.is_nan() || f <= critical {
+            break;
+        }
+        chosen.push(candidate);
+        fit = richer;
+    }
+    let t_quantile = t975(fit.dof);
+    // the window's systematic: the fit without one or two of its coarsest
+    // rungs (the most pre-asymptotic) or of its finest (the nearest the floor)
+    let systematic = [
+        &points[1..],
+        &points[2..],
+        &points[..n - 1],
+        &points[..n - 2],
+    ]
+    .iter()
+    .filter_map(|sub| expansion(sub, &chosen))
+    .map(|sub| (sub.order - fit.order).abs())
+    .fold(0.0, f64::max);
+    let half = t_quantile * fit.standard_error + systematic;
+    let mut corrections = [None; MAX_CORRECTIONS];
+    for (slot, c) in corrections.iter_mut().zip(&chosen) {
+        *slot = Some(*c);
+    }
     Some(OrderFit {
-        order,
-        standard_error,
+        order: fit.order,
+        standard_error: fit.standard_error,
+        corrections,
         t_quantile,
         systematic,
-        ci95: [order - half, order + half],
+        ci95: [fit.order - half, fit.order + half],
         points: n,
-        line: power_law(points)?,
+        line,
     })
 }
 
-/// The expansion fit's `p` and its standard error, or `None` when the design
-/// is singular or leaves no degree of freedom.
-fn expansion(points: &[(f64, f64)]) -> Option<(f64, f64)> {
+/// One least-squares fit of the expansion.
+struct Expansion {
+    order: f64,
+    standard_error: f64,
+    residual: f64,
+    dof: usize,
+}
+
+/// Fits `ln e = a + p ln h + sum b_k t_k(h)` over the given corrections;
+/// `None` when the design is singular or leaves no degree of freedom.
+fn expansion(points: &[(f64, f64)], corrections: &[Correction]) -> Option<Expansion> {
     let n = points.len();
-    if n <= EXPANSION_TERMS {
+    let terms = 2 + corrections.len();
+    if n <= terms {
         return None;
     }
     let h_max = points.iter().map(|p| p.0).fold(0.0, f64::max);
     let mean_ln_h = points.iter().map(|p| p.0.ln()).sum::<f64>() / n as f64;
-    let x = DMatrix::from_fn(n, EXPANSION_TERMS, |i, j| {
+    let x = DMatrix::from_fn(n, terms, |i, j| {
         let h = points[i].0;
         match j {
             0 => 1.0,
             1 => h.ln() - mean_ln_h, // centred: the slope is unchanged, the design better conditioned
-            k => (h / h_max).powi(k as i32 - 1),
+            k => match corrections[k - 2] {
+                Correction::Linear => h / h_max,
+                Correction::Quadratic => (h / h_max).powi(2),
+            },
         }
     });
     let y = DVector::from_fn(n, |i, _| points[i].1.ln());
@@ -91,9 +163,14 @@ fn expansion(points: &[(f64, f64)]) -> Option<(f64, f64)> {
     let inverse = (&xt * &x).try_inverse()?;
     let beta = &inverse * (&xt * &y);
     let residual = (&y - &x * &beta).norm_squared();
-    let variance = residual / (n - EXPANSION_TERMS) as f64;
-    let se = (variance * inverse[(1, 1)]).sqrt();
-    (beta[1].is_finite() && se.is_finite()).then_some((beta[1], se))
+    let dof = n - terms;
+    let standard_error = (residual / dof as f64 * inverse[(1, 1)]).sqrt();
+    (beta[1].is_finite() && standard_error.is_finite()).then_some(Expansion {
+        order: beta[1],
+        standard_error,
+        residual,
+        dof,
+    })
 }
 
 /// Student's t quantile at 0.975 with `dof` degrees of freedom.
@@ -269,6 +346,7 @@ mod tests {
         assert!(power_law(&[(1.0, 1.0), (1.0, 2.0), (1.0, 3.0)]).is_none());
         assert!(power_law(&[(1.0, 1.0), (2.0, 0.0), (3.0, 3.0)]).is_none());
         assert!(order_fit(&ladder(0.1, 5, |h| h)).is_none());
+        assert!(order_fit(&ladder(0.1, 8, |h| h)).is_some());
         assert!(order_fit(&[(0.1, 1.0); 8]).is_none());
     }
 }

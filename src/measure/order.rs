@@ -11,13 +11,14 @@ use super::Verdict;
 use super::fit::{OrderFit, order_fit};
 use crate::error::Error;
 use crate::ladder::{
-    AUTO_MAX_RUNG_STEPS, AUTO_START, AUTO_TARGET_WINDOW, LadderChoice, RungSize, auto_ratio,
-    steps_for,
+    AUTO_MAX_RUNG_STEPS, AUTO_START, LadderChoice, RungSize, auto_ratio, steps_for,
 };
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
-use crate::tolerance::{self, ERROR_CEILING, FLOOR_FRACTION, MIN_WINDOW};
+use crate::tolerance::{
+    self, ERROR_CEILING, FLOOR_FRACTION, FLOOR_MARGIN, MIN_WINDOW, REFERENCE_RUNGS, WINDOW_RUNGS,
+};
 use serde::Serialize;
 
 /// What to measure: the end time and the ladder.
@@ -50,6 +51,8 @@ pub enum DropReason {
     PreAsymptotic,
     /// The error no longer falls at the ladder's rate (fine end): round-off.
     RoundOff,
+    /// Asymptotic, but coarser than the window, which uses the finest rungs.
+    NotNeeded,
 }
 
 impl DropReason {
@@ -57,9 +60,10 @@ impl DropReason {
     pub fn explain(self) -> &'static str {
         match self {
             DropReason::Unstable => "unstable",
-            DropReason::AboveCeiling => "error above 10% of the orbit",
+            DropReason::AboveCeiling => "error above 30% of the orbit",
             DropReason::PreAsymptotic => "pre-asymptotic",
             DropReason::RoundOff => "round-off floor",
+            DropReason::NotNeeded => "coarser than the window",
         }
     }
 }
@@ -108,6 +112,10 @@ pub struct OrderRecord {
     pub ci95: Option<[f64; 2]>,
     /// The fit's details.
     pub fit: Option<OrderFit>,
+    /// How far the limit of the local orders, extrapolated to `h = 0`, lies
+    /// from the fitted order: a systematic the interval includes, which a
+    /// window too narrow to show its own curvature cannot reveal.
+    pub trend_systematic: Option<f64>,
     /// First and last rung of the window (indices into `rungs`).
     pub window: Option<[usize; 2]>,
     /// The verdict.
@@ -174,30 +182,26 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
                 };
                 rungs.push(run_rung(scheme, scene, t_end, size));
                 let choice = select_window(&errors(&rungs), scale);
-                if choice.window_len() >= AUTO_TARGET_WINDOW || choice.at_floor >= 2 {
+                let settled = choice.window_len() >= WINDOW_RUNGS
+                    && choice.spread
+                        <= tolerance::settled_tolerance(choice.median_local_order.unwrap_or(1.0));
+                if settled || choice.at_floor >= 2 {
                     break;
                 }
             }
         }
     }
     fill_local_orders(&mut rungs);
-    let choice = select_window(&errors(&rungs), scale);
-    for (rung, reason) in rungs.iter_mut().zip(&choice.dropped) {
+    let analysis = analyse(&errors(&rungs), scale);
+    for (rung, reason) in rungs.iter_mut().zip(&analysis.choice.dropped) {
         rung.dropped = *reason;
     }
-    let window = choice.window.map(|(a, b)| [a, b]);
-    let fit = choice.window.and_then(|(a, b)| {
-        let pts: Vec<(f64, f64)> = rungs[a..=b]
-            .iter()
-            .map(|r| (r.h, r.error.unwrap_or(f64::NAN)))
-            .collect();
-        order_fit(&pts)
-    });
-    if let (Some([a, b]), Some(_)) = (window, fit) {
+    let (fit, trend, ci95) = (analysis.fit, analysis.trend_systematic, analysis.ci95);
+    let window = fit.and(analysis.choice.window).map(|(a, b)| [a, b]);
+    if let Some([a, b]) = window {
         rungs[a..=b].iter_mut().for_each(|r| r.used = true);
     }
     let theoretical = meta.order as f64;
-    let ci95 = fit.map(|f| tolerance::order_interval(f.order, f.ci95));
     let (verdict, reason) = match (&fit, ci95, window) {
         (Some(f), Some(ci), Some([a, b])) => {
             match tolerance::order_verdict(theoretical, f.order, ci) {
@@ -229,7 +233,8 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         measured_order: fit.map(|f| f.order),
         ci95,
         fit,
-        window: fit.and(window),
+        trend_systematic: trend,
+        window,
         verdict,
         reason,
         rungs,
@@ -284,6 +289,84 @@ fn fill_local_orders(rungs: &mut [Rung]) {
     }
 }
 
+/// A ladder's data analysed: the window, the fit over it, the trend of the
+/// local orders, and the interval a verdict uses.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Analysis {
+    /// The window and why other rungs are out.
+    pub choice: WindowChoice,
+    /// The fit over the window.
+    pub fit: Option<OrderFit>,
+    /// See [`OrderRecord::trend_systematic`].
+    pub trend_systematic: Option<f64>,
+    /// The fit's interval widened by the trend and by
+    /// [`tolerance::ORDER_RESOLUTION`].
+    pub ci95: Option<[f64; 2]>,
+}
+
+/// Chooses the window of `(h, error)` data (coarse to fine, `None` for a rung
+/// that blew up), fits the order over it and forms its interval.
+pub fn analyse(data: &[(f64, Option<f64>)], scale: f64) -> Analysis {
+    let choice = select_window(data, scale);
+    let fit = choice.window.and_then(|(a, b)| {
+        let pts: Vec<(f64, f64)> = data[a..=b]
+            .iter()
+            .map(|&(h, e)| (h, e.unwrap_or(f64::NAN)))
+            .collect();
+        order_fit(&pts)
+    });
+    let trend_systematic = choice
+        .window
+        .zip(choice.median_local_order)
+        .zip(fit)
+        .and_then(|(((_, b), median), f)| {
+            let locals: Vec<(f64, Option<f64>)> = (0..=b)
+                .map(|i| {
+                    (
+                        data[i].0,
+                        (i > 0).then(|| local_order(data[i - 1], data[i])).flatten(),
+                    )
+                })
+                .collect();
+            local_order_trend(&locals, median).map(|limit| (limit - f.order).abs())
+        });
+    let ci95 = fit.map(|f| {
+        let t = trend_systematic.unwrap_or(0.0);
+        tolerance::order_interval(f.order, [f.ci95[0] - t, f.ci95[1] + t])
+    });
+    Analysis {
+        choice,
+        fit,
+        trend_systematic,
+        ci95,
+    }
+}
+
+/// The limit at `h = 0` of the local orders approaching the window's end:
+/// `l = p + c h` fitted over the finest run of rungs (ending at the last of
+/// `rungs`) whose local orders all lie within
+/// [`tolerance::pre_asymptotic_tolerance`] of `median`; `None` with fewer
+/// than four.
+fn local_order_trend(locals: &[(f64, Option<f64>)], median: f64) -> Option<f64> {
+    let near = tolerance::pre_asymptotic_tolerance(median);
+    let points: Vec<(f64, f64)> = locals
+        .iter()
+        .rev()
+        .map_while(|&(h, l)| l.filter(|l| (l - median).abs() <= near).map(|l| (h, l)))
+        .collect();
+    if points.len() < 4 {
+        return None;
+    }
+    let n = points.len() as f64;
+    let (mh, ml) = (
+        points.iter().map(|p| p.0).sum::<f64>() / n,
+        points.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxx: f64 = points.iter().map(|p| (p.0 - mh).powi(2)).sum();
+    let sxy: f64 = points.iter().map(|p| (p.0 - mh) * (p.1 - ml)).sum();
+    (sxx > 0.0).then(|| ml - sxy / sxx * mh)
+}
+
 /// The local order between two rungs, `ln(e1/e2) / ln(h1/h2)`.
 pub fn local_order(coarse: (f64, Option<f64>), fine: (f64, Option<f64>)) -> Option<f64> {
     let (e1, e2) = (coarse.1?, fine.1?);
@@ -302,6 +385,8 @@ pub struct WindowChoice {
     pub median_local_order: Option<f64>,
     /// How many rungs at the fine end sit on the round-off floor.
     pub at_floor: usize,
+    /// Largest minus smallest local order inside the window.
+    pub spread: f64,
 }
 
 impl WindowChoice {
@@ -318,12 +403,14 @@ impl WindowChoice {
 /// 1. rungs that blew up, or whose error exceeds [`ERROR_CEILING`] times the
 ///    scene's `scale`, are out; the longest run of consecutive remaining rungs
 ///    is kept;
-/// 2. the first rung whose local order falls below [`FLOOR_FRACTION`] of the
-///    median local order, and every finer one, sit on the round-off floor;
-/// 3. rungs at the fine end whose local order strays from the median by more
-///    than [`tolerance::round_off_tolerance`] are touched by round-off, and
-///    rungs at the coarse end straying by more than
-///    [`tolerance::pre_asymptotic_tolerance`] are pre-asymptotic.
+/// 2. if the error stops falling (or the local order collapses below
+///    [`FLOOR_FRACTION`] of the median), the ladder has reached the round-off
+///    floor: rungs past it, and rungs within [`FLOOR_MARGIN`] of the floor's
+///    error, are out;
+/// 3. the reference order is the median local order of the
+///    [`REFERENCE_RUNGS`] finest rungs left (the most asymptotic); the
+///    window is the longest run of finest rungs, at most [`WINDOW_RUNGS`],
+///    whose local orders all lie within [`tolerance::plateau_tolerance`] of it.
 pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
     let mut dropped: Vec<Option<DropReason>> = data
         .iter()
@@ -340,9 +427,10 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
         window: None,
         median_local_order: None,
         at_floor: 0,
+        spread: f64::NAN,
     };
     // the longest run of candidates; ties go to the finer run
-    let Some((mut a, mut b)) = longest_run(&dropped) else {
+    let Some((a, mut b)) = longest_run(&dropped) else {
         return none(dropped);
     };
     for (i, d) in dropped.iter_mut().enumerate() {
@@ -357,25 +445,39 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
     let local = |i: usize| {
         local_order((data[i - 1].0, data[i - 1].1), (data[i].0, data[i].1)).unwrap_or(f64::NAN)
     };
-    let mut median = f64::NAN;
-    let mut at_floor = 0;
-    // trim the floor, re-judging the median without it, until it settles
-    loop {
-        if b <= a {
-            break;
+    let error = |i: usize| data[i].1.unwrap_or(f64::NAN);
+    // 1. The round-off floor. Where the error stops falling (its minimum is
+    //    not the finest rung), every finer rung is on the floor; so is every
+    //    rung from a collapse of the local order on; and so is every rung
+    //    whose error is within FLOOR_MARGIN of the floor's.
+    let lowest = (a..=b)
+        .min_by(|&i, &j| error(i).total_cmp(&error(j)))
+        .unwrap_or(b);
+    let median_all = median_of((a + 1..=lowest).map(local).collect());
+    if lowest == a || median_all.is_nan() || median_all <= 0.0 {
+        for d in &mut dropped[a..=b] {
+            *d = Some(DropReason::PreAsymptotic);
         }
-        median = median_of((a + 1..=b).map(local).collect());
-        let Some(first) =
-            (a + 1..=b).find(|&i| local(i).is_nan() || local(i) < FLOOR_FRACTION * median)
-        else {
-            break;
-        };
-        at_floor += b + 1 - first;
-        for d in &mut dropped[first..=b] {
+        return none(dropped);
+    }
+    let collapse =
+        (a + 1..=lowest).find(|&i| local(i).is_nan() || local(i) < FLOOR_FRACTION * median_all);
+    let mut at_floor = 0;
+    if lowest < b || collapse.is_some() {
+        let floor = error(lowest);
+        let mut last = collapse.map_or(lowest, |c| c - 1);
+        while last > a && error(last) < FLOOR_MARGIN * floor {
+            last -= 1;
+        }
+        at_floor = b - last;
+        for d in &mut dropped[last + 1..=b] {
             *d = Some(DropReason::RoundOff);
         }
-        b = first - 1;
+        b = last;
     }
+    // 2. The reference order: the median local order of the finest rungs
+    //    left, the most asymptotic ones.
+    let median = median_of((a + 1..=b).rev().take(REFERENCE_RUNGS).map(local).collect());
     if median.is_nan() || median <= 0.0 {
         for d in &mut dropped[a..=b] {
             *d = Some(DropReason::PreAsymptotic);
@@ -385,22 +487,32 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
             ..none(dropped)
         };
     }
-    let fine = tolerance::round_off_tolerance(median);
-    while b > a && (local(b) - median).abs() > fine {
-        dropped[b] = Some(DropReason::RoundOff);
-        b -= 1;
+    // 3. The window: the finest rungs (at most WINDOW_RUNGS) whose local
+    //    orders all stay near the reference. Coarser rungs that stray are
+    //    pre-asymptotic; coarser ones that do not are simply not needed.
+    let tolerance = tolerance::plateau_tolerance(median);
+    let mut first = b;
+    while first > a && b - first + 1 < WINDOW_RUNGS && (local(first) - median).abs() <= tolerance {
+        first -= 1;
     }
-    let coarse = tolerance::pre_asymptotic_tolerance(median);
-    while a < b && (local(a + 1) - median).abs() > coarse {
-        dropped[a] = Some(DropReason::PreAsymptotic);
-        a += 1;
+    for (i, d) in dropped.iter_mut().enumerate().take(first).skip(a) {
+        let strays = (local(i + 1) - median).abs() > tolerance;
+        *d = Some(if strays {
+            DropReason::PreAsymptotic
+        } else {
+            DropReason::NotNeeded
+        });
     }
-    let window = (b + 1 - a >= MIN_WINDOW).then_some((a, b));
+    let window = (b + 1 - first >= MIN_WINDOW).then_some((first, b));
+    let inside: Vec<f64> = (first + 1..=b).map(local).collect();
+    let spread = inside.iter().copied().fold(f64::MIN, f64::max)
+        - inside.iter().copied().fold(f64::MAX, f64::min);
     WindowChoice {
         dropped,
         window,
         median_local_order: Some(median),
         at_floor,
+        spread,
     }
 }
 
@@ -462,13 +574,15 @@ mod tests {
             },
             20,
         );
-        let w = select_window(&data, 1.0);
+        // scale 0.3: the ceiling is 0.09, above rung 1's error of 0.125
+        let w = select_window(&data, 0.3);
         assert_eq!(w.dropped[0], Some(DropReason::Unstable));
         assert_eq!(w.dropped[1], Some(DropReason::AboveCeiling));
-        let (a, b) = w.window.unwrap();
-        assert!(a <= 3, "{w:?}");
-        // the floor, 2 h^2 = 1e-13 / h, is crossed at h = 3.7e-5 (rung 13.7)
-        assert!((10..=13).contains(&b), "{w:?}");
+        // the smallest error, 5.1e-9, is at h = (1e-13/4)^(1/3) = 2.9e-5; rungs
+        // within a factor 100 of it (2 h^2 < 5.1e-7, h < 5.1e-4) are out,
+        // so the last rung kept is 9 (h = 9.8e-4) and the window its finest 8
+        assert_eq!(w.window, Some((2, 9)), "{w:?}");
+        let b = 9;
         assert!(
             w.dropped[b + 1..]
                 .iter()

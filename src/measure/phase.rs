@@ -9,9 +9,11 @@ use crate::tolerance::{PHASE_COEFFICIENT_TOLERANCE, PHASE_FLOOR};
 use nalgebra::{Matrix2, Vector1};
 use serde::Serialize;
 
-/// `z = h w0` at which the one-step map is taken: halving from 0.4.
+/// `z = h w0` at which the one-step map is taken: from 1.6 down to 1e-4 by
+/// factors of `sqrt(2)`; high-order schemes show a phase error above
+/// round-off only at the coarse end, low-order ones down to the fine end.
 pub fn phase_steps() -> impl Iterator<Item = f64> {
-    (0..14).map(|k| 0.4 / 2f64.powi(k))
+    (0..28).map(|k| 1.6 * 2f64.powf(-0.5 * k as f64))
 }
 
 /// The relative phase error at one `z`.

@@ -172,7 +172,7 @@ pub fn geometry_table(cases: &[CaseRecords]) -> String {
             format!(
                 "{} (claim {})",
                 opt(r.return_ulps, |u| if u <= r.tolerance_ulps {
-                    format!("<= {}", r.tolerance_ulps)
+                    format!("<= {}", sci(r.tolerance_ulps))
                 } else {
                     sci(u)
                 }),
@@ -299,21 +299,23 @@ fn method() -> String {
          `t_end` is 2 sqrt(2) periods, an irrational multiple, so no cancellation at a \
          half or whole period can flatter a scheme.\n\
          - **Ladder.** Automatic: from 1/8 of a period, halving (order <= 2) or dividing by \
-         `2^(2/p)` (higher orders), until {} rungs are asymptotic, the error reaches the \
-         round-off floor, or a rung would need more than {} steps.\n\
+         `2^(2/p)` (higher orders), until the window is full, the error reaches the round-off \
+         floor, or a rung would need more than {} steps.\n\
          - **Window.** Chosen from the data, never from the claimed order: rungs that blow up \
-         or whose error exceeds {} of the orbit are out; rungs whose local order falls below \
-         {} of the median are on the round-off floor; end rungs whose local order strays from \
-         the median by more than 2% (fine end: round-off creeping in) or 10% (coarse end: \
-         pre-asymptotic) are out.\n\
-         - **Fit.** `ln e = ln C + p ln h + b1 h/H + b2 (h/H)^2` by least squares over the \
-         window (the error expansion to second order, which a straight line would turn into \
-         bias); `p` with Student's t 95% interval, widened by how far `p` moves when the \
-         window loses an end rung.\n\n",
-        crate::ladder::AUTO_TARGET_WINDOW,
+         or whose error exceeds {} of the orbit are out; once the error stops falling (or \
+         the local order collapses below {} of the median), rungs on the round-off floor and \
+         within a factor {} of its error are out; the window is then the finest {} rungs \
+         at most whose local orders stay within 5% of the median of the finest three.\n\
+         - **Fit.** `ln e = ln C + p ln h`, plus the error expansion's next terms \
+         `b1 h/H` and `b2 (h/H)^2` where a partial F-test at 5% says the data call for them \
+         (a straight line through smooth errors would turn them into bias); `p` with \
+         Student's t 95% interval, widened by how far `p` moves when the window loses one or \
+         two end rungs and by how far the local orders extrapolate from it.\n\n",
         crate::ladder::AUTO_MAX_RUNG_STEPS,
         tolerance::ERROR_CEILING,
         tolerance::FLOOR_FRACTION,
+        tolerance::FLOOR_MARGIN,
+        tolerance::WINDOW_RUNGS,
     )
 }
 
