@@ -4,13 +4,19 @@
 //! A scene models only what it needs: the oscillator is 1-D, the orbit 2-D,
 //! and a force evaluation is a handful of flops on stack vectors.
 
+mod anharmonic;
 mod counted;
+mod elliptic;
 mod harmonic;
 mod kepler;
+mod separatrix;
+mod well;
 
+pub use anharmonic::Anharmonic;
 pub use counted::Counted;
 pub use harmonic::Harmonic;
 pub use kepler::KeplerCircular;
+pub use separatrix::Separatrix;
 
 use crate::error::Error;
 use crate::state::{Real, State};
