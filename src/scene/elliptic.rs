@@ -24,8 +24,9 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Levels the Landen chain may need. Every double `m < 1` has `1 - m >=
 /// 2^-53`, so `k' >= 1e-8`, from which eight steps bring the modulus below
-/// [`NEGLIGIBLE_MODULUS`]; sixteen leave room.
-const MAX_LEVELS: usize = 16;
+/// [`NEGLIGIBLE_MODULUS`]; twelve leave room, and keep a scene that stores
+/// the chain small enough to copy freely.
+const MAX_LEVELS: usize = 12;
 
 /// A modulus at which the functions are circular to round-off: `sn(w | k^2) =
 /// sin w - k^2 (w - sin w cos w) cos w / 4 + O(k^4)` (A&S 16.13), and
@@ -40,11 +41,15 @@ const NEGLIGIBLE_MODULUS: f64 = 1e-10;
 /// The chain is read off the arithmetic-geometric mean of A&S 17.6: `a_0 = 1,
 /// b_0 = k', c_0 = k`, `a_{j+1} = (a_j + b_j)/2`, `b_{j+1} = sqrt(a_j b_j)`,
 /// `c_{j+1} = (a_j - b_j)/2 = c_j^2 / (4 a_{j+1})` (the second form has no
-/// cancellation). The Landen moduli are `k_j = c_j / a_j`, with `1 + k_{j+1}
-/// = a_j / a_{j+1}`, `1 - k_{j+1} = b_j / a_{j+1}`, and `K = pi / (2 a_N)`. The
-/// argument at the bottom is `u a_N = pi u / (2K)`: taken from the mean
-/// itself rather than from the product of the `1 + k_j`, whose rounding would
-/// shift the phase by several ulps per period.
+/// cancellation), and `K = pi / (2 a_N)`. Level `j` keeps only its
+/// complementary modulus `k'_j = b_j / a_j`, from which the next modulus
+/// follows as `k_{j+1} = (1 - k'_j) / (1 + k'_j)` and `1 - k_{j+1} = 2 k'_j /
+/// (1 + k'_j)`, both without cancellation where it would matter: `1 - k'_j`
+/// loses digits only when `k_{j+1}` is tiny, and a tiny modulus enters the
+/// transformation only through `1 + k` and `k s^2`. The argument at the
+/// bottom is `u a_N = pi u / (2K)`: taken from the mean itself rather than
+/// from the product of the `1 + k_j`, whose rounding would shift the phase by
+/// several ulps per period.
 ///
 /// Going up one level, with `s, c, d` the functions of `k_{j+1}` at `w = u /
 /// (1 + k_{j+1})` (A&S 16.12, Gauss's transformation):
@@ -58,10 +63,8 @@ const NEGLIGIBLE_MODULUS: f64 = 1e-10;
 pub(crate) struct Jacobi {
     /// The parameter `m = k^2`.
     m: f64,
-    /// `k_1 .. k_levels` of the chain.
-    k: [f64; MAX_LEVELS],
-    /// `1 - k_j` for the same levels, without cancellation.
-    one_minus_k: [f64; MAX_LEVELS],
+    /// `k'_0 .. k'_{levels - 1}`: the complementary moduli above each step.
+    complementary: [f64; MAX_LEVELS],
     /// How many levels the chain has.
     levels: usize,
     /// The modulus at the bottom of the chain (below [`NEGLIGIBLE_MODULUS`]).
@@ -76,8 +79,7 @@ impl Jacobi {
         debug_assert!((0.0..=1.0).contains(&m), "parameter m = {m} outside [0, 1]");
         let mut jacobi = Jacobi {
             m,
-            k: [0.0; MAX_LEVELS],
-            one_minus_k: [0.0; MAX_LEVELS],
+            complementary: [0.0; MAX_LEVELS],
             levels: 0,
             bottom: m.sqrt(),
             agm: 0.0,
@@ -89,12 +91,11 @@ impl Jacobi {
         // 1 - m is exact for m >= 1/2 (Sterbenz), so k' is accurate where small
         let (mut a, mut b, mut c) = (1.0, (1.0 - m).sqrt(), m.sqrt());
         while c / a > NEGLIGIBLE_MODULUS && jacobi.levels < MAX_LEVELS {
+            jacobi.complementary[jacobi.levels] = b / a;
             let next = 0.5 * (a + b);
             c = c * c / (4.0 * next);
-            jacobi.one_minus_k[jacobi.levels] = b / next;
             b = (a * b).sqrt();
             a = next;
-            jacobi.k[jacobi.levels] = c / a;
             jacobi.levels += 1;
         }
         jacobi.bottom = c / a;
@@ -117,15 +118,16 @@ impl Jacobi {
         }
         let (mut s, mut c) = (u * self.agm).sin_cos();
         let mut d = (1.0 - self.bottom * self.bottom * s * s).sqrt();
-        for j in (0..self.levels).rev() {
-            let k = self.k[j];
+        for &kp in self.complementary[..self.levels].iter().rev() {
+            let r = 1.0 / (1.0 + kp);
+            let k = (1.0 - kp) * r;
             let ks2 = k * s * s;
             // 1 - k s^2 loses nothing while k s^2 <= 1/2; beyond, the sum
             // of positives keeps dn's relative accuracy
             let numerator = if ks2 <= 0.5 {
                 1.0 - ks2
             } else {
-                self.one_minus_k[j] + k * c * c
+                2.0 * kp * r + k * c * c
             };
             let den = 1.0 + ks2;
             (s, c, d) = ((1.0 + k) * s / den, c * d / den, numerator / den);
