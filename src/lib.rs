@@ -7,8 +7,10 @@
 //! - [`scheme`]: the catalogue (explicit Euler, Euler-Cromer, Störmer-Verlet,
 //!   leap-frog, velocity and position Verlet) and the [`scheme::Scheme`]
 //!   trait to bring your own.
-//! - [`scene`]: the harmonic oscillator and the circular Earth-Sun orbit, with
-//!   exact solutions; the [`scene::Scene`] trait to bring your own.
+//! - [`scene`]: the harmonic oscillator, the circular Earth-Sun orbit and the
+//!   anharmonic well (trapped orbits in Jacobi elliptic functions, and its
+//!   separatrix), with exact solutions; the [`scene::Scene`] trait to bring
+//!   your own.
 //! - [`measure`]: the studies; [`measure::order::global_order`] measures the
 //!   global order with a 95% interval over an automatically chosen window.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
