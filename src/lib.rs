@@ -8,9 +8,10 @@
 //!   leap-frog, velocity and position Verlet, the implicit midpoint rule,
 //!   RK4, PEFRL and the Forest-Ruth, Yoshida and Kahan-Li compositions) and
 //!   the [`scheme::Scheme`] trait to bring your own.
-//! - [`scene`]: the harmonic oscillator, the circular Earth-Sun orbit and an
-//!   eccentric Kepler orbit, with exact solutions; the [`scene::Scene`] trait
-//!   to bring your own.
+//! - [`scene`]: the harmonic oscillator, the circular Earth-Sun orbit, an
+//!   eccentric Kepler orbit and the anharmonic well (trapped orbits in Jacobi
+//!   elliptic functions, and its separatrix), with exact solutions; the
+//!   [`scene::Scene`] trait to bring your own.
 //! - [`measure`]: the studies; [`measure::order::global_order`] measures the
 //!   global order with a 95% interval over an automatically chosen window.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.

@@ -4,13 +4,19 @@
 //! A scene models only what it needs: the oscillator is 1-D, the orbit 2-D,
 //! and a force evaluation is a handful of flops on stack vectors.
 
+mod anharmonic;
 mod counted;
+mod elliptic;
 mod harmonic;
 mod kepler;
+mod separatrix;
+mod well;
 
+pub use anharmonic::Anharmonic;
 pub use counted::Counted;
 pub use harmonic::Harmonic;
 pub use kepler::{KeplerCircular, KeplerEccentric};
+pub use separatrix::Separatrix;
 
 use crate::error::Error;
 use crate::state::{Real, State};
@@ -185,10 +191,14 @@ macro_rules! scenes {
     };
 }
 
+// `Separatrix` is left out on purpose: its orbit creeps up to the unstable
+// barrier top, where any error grows exponentially, so an order study there
+// would measure the instability rather than the scheme.
 scenes![
     Harmonic(Harmonic, 1),
     KeplerCircular(KeplerCircular, 2),
     KeplerEccentric(KeplerEccentric, 2),
+    Anharmonic(Anharmonic, 1),
 ];
 
 /// Reads `(metadata, period)` off any scene.
