@@ -1,18 +1,16 @@
 //! The catalogue against its own claims, on every built-in scene.
 
-use stepladder::measure::order::OrderSpec;
 use stepladder::scene::{Counted, Harmonic, KeplerCircular, Scene};
 use stepladder::scheme::{
     Flow, POSITION_VERLET, Scheme, SchemeVisitor, TABLES, VELOCITY_VERLET, catalogue, scheme_ids,
     visit_scheme,
 };
-use stepladder::suite::all_cases;
 
 #[test]
 fn every_scheme_has_its_claimed_order_on_every_scene() {
-    let failures: Vec<String> = all_cases()
-        .iter()
-        .map(|c| c.order(&OrderSpec::default()).unwrap())
+    let failures: Vec<String> = super::common::suite()
+        .order()
+        .into_iter()
         .filter(|r| !r.passed())
         .map(|r| format!("{} on {}: {}", r.scheme, r.scene, r.reason))
         .collect();

@@ -13,13 +13,11 @@ use stepladder::run::integrate;
 use stepladder::scene::{Harmonic, KeplerCircular, Scene, SceneMeta};
 use stepladder::scheme::{EULER_CROMER, Euler, Flow, SchemeMeta, SplittingTable, VELOCITY_VERLET};
 use stepladder::state::{Real, State};
-use stepladder::suite::{all_cases, run_case};
 
 #[test]
 fn every_geometric_claim_of_the_catalogue_is_confirmed() {
     let mut failures = Vec::new();
-    for c in all_cases() {
-        let r = run_case(c.as_ref()).unwrap();
+    for r in &super::common::suite().cases {
         for (what, verdict, reason) in [
             ("energy", r.energy.verdict, &r.energy.reason),
             ("symplectic", r.symplectic.verdict, &r.symplectic.reason),

@@ -1,0 +1,15 @@
+//! The harness's own tests, in one binary so that the catalogue x scenes
+//! suite, which several of them judge, runs once (see [`common::suite`]).
+
+mod broken;
+mod catalogue;
+mod cli;
+mod common;
+mod geometry;
+mod implicit;
+mod order;
+mod order_conditions;
+mod properties;
+mod report;
+mod snapshots;
+mod stability;
