@@ -1,24 +1,29 @@
-//! Implicit schemes: each step solves an equation, here by fixed-point
-//! iteration to round-off, with a bounded number of iterations and a
-//! [`StepFailure::NotConverged`] instead of a wrong state when the solve fails.
+//! Implicit schemes: each step solves an equation to round-off, with a
+//! bounded number of iterations and a [`StepFailure::NotConverged`] instead
+//! of a wrong state when the solve fails.
 //!
 //! For an implicit scheme [`SchemeMeta::force_evaluations`] counts evaluations
-//! per iteration of the solve: the iterations a step needs depend on the step
-//! size and the scene, so no count per step would be true. The iterations
-//! actually spent are read off the carry with [`Scheme::solver_iterations`], and
-//! evaluations = iterations x `force_evaluations`.
+//! per fixed-point iteration: the iterations a step needs depend on the step
+//! size and the scene, so no count per step would be true. The evaluations
+//! actually spent are read off the carry with [`Scheme::solver_evaluations`].
 
 use super::{PhaseError, Scheme, SchemeMeta, StepFailure};
 use crate::scene::Scene;
 use crate::state::{Real, State};
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
-/// Most fixed-point iterations one step may take. The iteration contracts by
-/// `rho = h^2 L / 4` (`L` the Lipschitz constant of `a`); from a predictor
-/// whose error is a fraction of the orbit, 64 iterations reach round-off for
-/// any `rho < 0.55`. A step that needs more is far too large for this solve
-/// and is reported as not converged.
+/// Most iterations one step may take. The fixed-point iteration contracts by
+/// `rho = h^2 L / 4` (`L` the Lipschitz constant of `a`); once it contracts
+/// by less than [`SWITCH_RATIO`] per iteration the solve turns to Newton's
+/// method, which converges quadratically whatever `rho`. A step that still
+/// needs more is far too large for the orbit and is reported as not converged.
 pub const MAX_ITERATIONS: u32 = 64;
+
+/// The fixed-point iteration gives way to Newton's method when a correction
+/// is more than this fraction of the previous one: `rho > 1/2` would need
+/// over 50 iterations to reach round-off, and `rho >= 1` never would (the
+/// rule is stable for every step on the oscillator; its solve should be too).
+pub const SWITCH_RATIO: f64 = 0.5;
 
 /// A correction below this many units of round-off of the terms that make
 /// the midpoint means the iterate has stopped moving by more than the
@@ -35,7 +40,9 @@ pub const ROUND_OFF_UNITS: f64 = 8.0;
 /// `m = q0 + h/2 v0 + h^2/4 a(m)`, by fixed-point iteration (one force
 /// evaluation per iteration) from the predictor `q0 + h/2 v0 + h^2/4 a_prev`
 /// (`a_prev` the previous step's midpoint acceleration, so the predictor is
-/// already `O(h^3)` accurate), then sets `v1 = v0 + h a(m)`, `q1 = 2 m - q0`.
+/// already `O(h^3)` accurate), turning to Newton's method (with a
+/// forward-difference Jacobian, `1 + D` evaluations an iteration) if the
+/// iteration contracts slowly, then sets `v1 = v0 + h a(m)`, `q1 = 2 m - q0`.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ImplicitMidpoint;
 
@@ -49,14 +56,14 @@ pub struct MidpointCarry<R: Real, const D: usize> {
     pub a: SVector<R, D>,
     /// Iterations the last step took, converged or not (0 before the first).
     pub last_iterations: u32,
-    /// Iterations since `start`, failed solves included: every iteration is
-    /// one force evaluation.
-    pub iterations: u64,
+    /// Force evaluations spent by the solves since `start`, failed ones
+    /// included.
+    pub evaluations: u64,
 }
 
 impl ImplicitMidpoint {
     /// What the implicit midpoint rule claims; `force_evaluations` is per
-    /// iteration of the solve (see the module documentation).
+    /// fixed-point iteration of the solve (see the module documentation).
     pub const META: SchemeMeta = SchemeMeta {
         id: "implicit-midpoint",
         name: "implicit midpoint rule (fixed-point solve)",
@@ -91,7 +98,7 @@ impl Scheme for ImplicitMidpoint {
             state: *s,
             a: SVector::zeros(),
             last_iterations: 0,
-            iterations: 0,
+            evaluations: 0,
         }
     }
 
@@ -111,11 +118,23 @@ impl Scheme for ImplicitMidpoint {
         let units = R::of(ROUND_OFF_UNITS) * R::default_epsilon();
         let mut correction = R::zero();
         let mut previous: Option<R> = None;
+        let mut newton = false;
         for k in 1..=MAX_ITERATIONS {
             let a = scene.acceleration(&m);
-            let next = base + a * c2;
-            correction = (next - m).norm_squared();
-            m = next;
+            c.evaluations += 1;
+            // the fixed-point correction; Newton's scales it by (I - c2 A)^-1
+            let fixed_point = base + a * c2 - m;
+            let delta = if newton {
+                c.evaluations += D as u64;
+                match (SMatrix::<R, D, D>::identity() - jacobian(scene, &m, &a) * c2).try_inverse()
+                {
+                    Some(inverse) => inverse * fixed_point,
+                    None => return Err(fail(c, k, correction)),
+                }
+            } else {
+                fixed_point
+            };
+            correction = delta.norm_squared();
             let size = terms + (a * c2).norm_squared();
             // Within round-off, keep iterating while the correction still
             // shrinks: stopping short of the floating-point fixed point
@@ -124,37 +143,66 @@ impl Scheme for ImplicitMidpoint {
             let settled = correction == R::zero() || previous.is_some_and(|p| correction >= p);
             if correction <= units * units * size && (settled || k == MAX_ITERATIONS) {
                 c.last_iterations = k;
-                c.iterations += k as u64;
+                // the midpoint in the rule's own form, so that q1 and v1 use
+                // the very same acceleration: q1 = q0 + h (v0 + v1) / 2 exactly
+                let m = base + a * c2;
                 c.state = State::new(m * R::of(2.0) - q0, v0 + a * h);
                 c.a = a;
                 return Ok(());
             }
             // an overflowed or NaN iterate never converges: stop spending on it
             if !correction.is_finite() {
-                c.last_iterations = k;
-                c.iterations += k as u64;
-                return Err(not_converged(k, correction));
+                return Err(fail(c, k, correction));
             }
+            // a fixed-point iteration contracting by less than SWITCH_RATIO
+            // per step is too slow (or diverging): Newton from here on
+            if previous.is_some_and(|p| correction > p * R::of(SWITCH_RATIO * SWITCH_RATIO)) {
+                newton = true;
+            }
+            m += delta;
             previous = Some(correction);
         }
-        c.last_iterations = MAX_ITERATIONS;
-        c.iterations += MAX_ITERATIONS as u64;
-        Err(not_converged(MAX_ITERATIONS, correction))
+        Err(fail(c, MAX_ITERATIONS, correction))
     }
 
     fn state<R: Real, const D: usize>(&self, c: &MidpointCarry<R, D>, _: R) -> State<D, R> {
         c.state
     }
 
-    fn solver_iterations<R: Real, const D: usize>(&self, c: &MidpointCarry<R, D>) -> Option<u64> {
-        Some(c.iterations)
+    fn solver_evaluations<R: Real, const D: usize>(&self, c: &MidpointCarry<R, D>) -> Option<u64> {
+        Some(c.evaluations)
     }
 }
 
-/// The failure after `iterations`, with the last correction's size.
-fn not_converged<R: Real>(iterations: u32, correction_squared: R) -> StepFailure {
+/// Records a failed solve of `iterations` iterations in the carry (whose
+/// state stays as it was) and describes it.
+fn fail<R: Real, const D: usize>(
+    c: &mut MidpointCarry<R, D>,
+    iterations: u32,
+    correction_squared: R,
+) -> StepFailure {
+    c.last_iterations = iterations;
     StepFailure::NotConverged {
         iterations,
         residual: correction_squared.sqrt().to_subset().unwrap_or(f64::NAN),
     }
+}
+
+/// `da/dq` at `m` by forward differences (`a = a(m)` given), `D` force
+/// evaluations. Newton needs only an approximation of it: the residual it
+/// drives to zero is exact, so the solve still ends at round-off.
+fn jacobian<R: Real, const D: usize, S: Scene<D>>(
+    scene: &S,
+    m: &SVector<R, D>,
+    a: &SVector<R, D>,
+) -> SMatrix<R, D, D> {
+    let size = m.norm() / R::of((D as f64).sqrt());
+    let mut j = SMatrix::<R, D, D>::zeros();
+    for col in 0..D {
+        let step = R::of(f64::EPSILON.sqrt()) * (m[col].abs() + size + R::of(f64::MIN_POSITIVE));
+        let mut shifted = *m;
+        shifted[col] += step;
+        j.set_column(col, &((scene.acceleration(&shifted) - a) / step));
+    }
+    j
 }

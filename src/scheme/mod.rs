@@ -45,7 +45,7 @@ pub struct SchemeMeta {
     /// Force evaluations per step, once the scheme has started; for an
     /// implicit scheme, per iteration of its solve, since the iterations a
     /// step needs depend on the step and the scene (they are read off the
-    /// carry with [`Scheme::solver_iterations`]).
+    /// carry with [`Scheme::solver_evaluations`]).
     pub force_evaluations: u32,
     /// The step solves an equation (implicit scheme).
     pub implicit: bool,
@@ -139,10 +139,10 @@ pub trait Scheme {
     /// evaluation.
     fn state<R: Real, const D: usize>(&self, carry: &Self::Carry<R, D>, h: R) -> State<D, R>;
 
-    /// Iterations an implicit scheme's solves have taken since `start`, read
-    /// off the carry (each costs `meta().force_evaluations` evaluations);
-    /// `None` for an explicit scheme, whose cost per step is fixed.
-    fn solver_iterations<R: Real, const D: usize>(
+    /// Force evaluations an implicit scheme's solves have spent since
+    /// `start`, read off the carry; `None` for an explicit scheme, whose cost
+    /// per step is fixed by its metadata.
+    fn solver_evaluations<R: Real, const D: usize>(
         &self,
         _carry: &Self::Carry<R, D>,
     ) -> Option<u64> {

@@ -11,7 +11,9 @@ use stepladder::measure::symplectic::{SymplecticSpec, symplecticity};
 use stepladder::measure::tangent::step_jacobian;
 use stepladder::run::integrate;
 use stepladder::scene::{Harmonic, KeplerCircular, Scene, SceneMeta};
-use stepladder::scheme::{EULER_CROMER, Euler, Flow, SchemeMeta, SplittingTable, VELOCITY_VERLET};
+use stepladder::scheme::{
+    EULER_CROMER, Euler, Flow, Rk4, SchemeMeta, SplittingTable, VELOCITY_VERLET,
+};
 use stepladder::state::{Real, State};
 
 #[test]
@@ -104,6 +106,25 @@ fn euler_symplectic_defect_is_its_analytic_value() {
             assert!(
                 (defect - z * z).abs() <= 1e-14 * (1.0 + z * z),
                 "w = {w}, z = {z}: {defect}"
+            );
+        }
+    }
+}
+
+/// RK4 on the oscillator multiplies by `R(iz) = 1 - z^2/2 + z^4/24 + i(z - z^3/6)`
+/// in the rotating basis, so `det J = |R(iz)|^2 = 1 - z^6/72 + z^8/576`
+/// exactly: the `z^2` and `z^4` terms cancel (1/4 + 1/12 - 1/3 = 0).
+#[test]
+fn rk4_symplectic_defect_is_its_analytic_value() {
+    for w in [0.5, 3.0] {
+        let osc = Harmonic::new(w, 1.0, -0.2).unwrap();
+        for z in [0.05, 0.3, 1.0, 2.0] {
+            let j = step_jacobian(&Rk4, &osc, &osc.initial(), z / w).unwrap();
+            let expected = -z.powi(6) / 72.0 + z.powi(8) / 576.0;
+            let defect = j.determinant() - 1.0;
+            assert!(
+                (defect - expected).abs() <= 1e-14,
+                "w = {w}, z = {z}: {defect} vs {expected}"
             );
         }
     }

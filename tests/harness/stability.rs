@@ -54,6 +54,24 @@ fn explicit_euler_is_stable_for_no_step() {
     assert!(r.stable_intervals.is_empty());
 }
 
+/// RK4: `|R(iz)|^2 = 1 - z^6/72 + z^8/576 <= 1` exactly while `z^2 <= 8`.
+#[test]
+fn rk4_is_stable_up_to_two_root_two() {
+    let r = limit("rk4");
+    let z = r.stability_limit.expect("a finite limit");
+    assert!((z - 8f64.sqrt()).abs() < 1e-9, "{z}");
+    assert!((r.limit_per_force_evaluation.unwrap() - 8f64.sqrt() / 4.0).abs() < 1e-9);
+}
+
+/// The implicit midpoint rule's eigenvalues `(1 + iz/2)/(1 - iz/2)` have
+/// modulus one for every `z`: stable for every step, reported as no limit.
+#[test]
+fn implicit_midpoint_is_stable_for_every_step() {
+    let r = limit("implicit-midpoint");
+    assert_eq!(r.stability_limit, None, "{r:?}");
+    assert_eq!(r.stable_intervals, vec![[Some(0.0), None]]);
+}
+
 /// `h w0 = 2.5` is beyond velocity Verlet's limit 2: the run must stop as
 /// soon as the state leaves the bound, and say so.
 #[test]
