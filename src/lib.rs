@@ -14,6 +14,8 @@
 //!   [`scene::Scene`] trait to bring your own.
 //! - [`measure`]: the studies; [`measure::order::global_order`] measures the
 //!   global order with a 95% interval over an automatically chosen window.
+//! - [`guard`]: one-line assertions of a scheme's claims for a downstream
+//!   crate's tests, with the deciding figures in the failure message.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
 //!
 //! ```
@@ -32,6 +34,7 @@
 pub mod case;
 pub mod cli;
 pub mod error;
+pub mod guard;
 pub mod ladder;
 pub mod measure;
 pub mod report;

@@ -16,6 +16,7 @@ use crate::ladder::{
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
+use crate::state::State;
 use crate::tolerance::{
     self, ERROR_CEILING, FLOOR_FRACTION, FLOOR_MARGIN, MIN_WINDOW, REFERENCE_RUNGS, WINDOW_RUNGS,
 };
@@ -53,6 +54,9 @@ pub enum DropReason {
     RoundOff,
     /// Asymptotic, but coarser than the window, which uses the finest rungs.
     NotNeeded,
+    /// The finest rung of a scene without an exact solution: the rung before
+    /// it is measured against it, and nothing finer measures it.
+    Reference,
 }
 
 impl DropReason {
@@ -64,6 +68,7 @@ impl DropReason {
             DropReason::PreAsymptotic => "pre-asymptotic",
             DropReason::RoundOff => "round-off floor",
             DropReason::NotNeeded => "coarser than the window",
+            DropReason::Reference => "reference for the rung before",
         }
     }
 }
@@ -103,6 +108,8 @@ pub struct OrderRecord {
     pub theoretical_order: u32,
     /// End time of every rung.
     pub t_end: f64,
+    /// What each rung's error is measured against.
+    pub reference: Reference,
     /// How the ladder was chosen.
     pub ladder: LadderChoice,
     /// The fitted order, when a window was found.
@@ -151,19 +158,37 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
 ) -> Result<OrderRecord, Error> {
     let meta = scheme.meta();
     let scene_meta = scene.meta();
-    if scene.exact(0.0).is_none() {
-        return Err(Error::NoExactSolution(scene_meta.id));
-    }
+    let reference = if scene.exact(0.0).is_some() {
+        Reference::Exact
+    } else {
+        Reference::SuccessiveRungs
+    };
     let t_end = match spec.t_end {
         Some(t) => crate::scene::positive("t_end", t)?,
         None => scene.default_t_end(),
     };
     let scale = scene.scale();
     let mut rungs: Vec<Rung> = Vec::new();
+    let mut samples: Vec<Option<Vec<State<D>>>> = Vec::new();
+    let mut push = |rungs: &mut Vec<Rung>, size: RungSize| {
+        let (rung, sampled) = run_rung(scheme, scene, t_end, size, reference);
+        rungs.push(rung);
+        samples.push(sampled);
+        if reference == Reference::SuccessiveRungs {
+            compare_successive(scene, rungs, &samples);
+        }
+    };
     match spec.ladder {
         LadderChoice::Fixed(ladder) => {
             for size in ladder.rungs(t_end)? {
-                rungs.push(run_rung(scheme, scene, t_end, size));
+                let size = reference.align(size, t_end)?;
+                if rungs.last().is_some_and(|r: &Rung| r.steps >= size.steps) {
+                    return Err(Error::InvalidLadder(format!(
+                        "without an exact solution every rung needs a multiple of {SAMPLES} steps, and two rungs round to {}: use a smaller ratio",
+                        size.steps
+                    )));
+                }
+                push(&mut rungs, size);
             }
         }
         LadderChoice::Auto => {
@@ -176,12 +201,18 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
                 if steps > AUTO_MAX_RUNG_STEPS {
                     break;
                 }
-                let size = RungSize {
-                    h: t_end / steps as f64,
-                    steps,
-                };
-                rungs.push(run_rung(scheme, scene, t_end, size));
-                let choice = select_window(&errors(&rungs), scale);
+                let size = reference.align(
+                    RungSize {
+                        h: t_end / steps as f64,
+                        steps,
+                    },
+                    t_end,
+                )?;
+                if rungs.last().is_some_and(|r| r.steps >= size.steps) {
+                    continue;
+                }
+                push(&mut rungs, size);
+                let choice = select_window(&errors(&rungs, reference), scale);
                 let settled = choice.window_len() >= WINDOW_RUNGS
                     && choice.spread
                         <= tolerance::settled_tolerance(choice.median_local_order.unwrap_or(1.0));
@@ -192,9 +223,14 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         }
     }
     fill_local_orders(&mut rungs);
-    let analysis = analyse(&errors(&rungs), scale);
+    let analysis = analyse(&errors(&rungs, reference), scale);
     for (rung, reason) in rungs.iter_mut().zip(&analysis.choice.dropped) {
         rung.dropped = *reason;
+    }
+    if reference == Reference::SuccessiveRungs
+        && let Some(finest) = rungs.last_mut()
+    {
+        finest.dropped = Some(DropReason::Reference);
     }
     let (fit, trend, ci95) = (analysis.fit, analysis.trend_systematic, analysis.ci95);
     let window = fit.and(analysis.choice.window).map(|(a, b)| [a, b]);
@@ -229,6 +265,7 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         scene_parameters: scene_meta.parameters,
         theoretical_order: meta.order,
         t_end,
+        reference,
         ladder: spec.ladder,
         measured_order: fit.map(|f| f.order),
         ci95,
@@ -241,43 +278,120 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
     })
 }
 
-/// Runs one rung and measures its global and final errors.
+/// What a rung's error is measured against.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reference {
+    /// The scene's exact solution, at every step.
+    Exact,
+    /// The next finer rung, at [`SAMPLES`] equally spaced times: for a scene
+    /// without an exact solution. The difference of successive rungs falls
+    /// like `C h^p (1 - r^p)` for a ladder of ratio `r`, so it has the order
+    /// of the error itself (Richardson's argument).
+    SuccessiveRungs,
+}
+
+/// Times at which successive rungs are compared when there is no exact
+/// solution: `t_end j / SAMPLES`, on the step grid of every rung because
+/// every rung then takes a multiple of this many steps.
+pub const SAMPLES: u64 = 64;
+
+impl Reference {
+    /// `size` with its step count rounded up to a multiple of [`SAMPLES`]
+    /// when rungs are compared with each other.
+    fn align(self, size: RungSize, t_end: f64) -> Result<RungSize, Error> {
+        match self {
+            Reference::Exact => Ok(size),
+            Reference::SuccessiveRungs => {
+                let steps = size.steps.div_ceil(SAMPLES) * SAMPLES;
+                crate::ladder::check_cost(steps)?;
+                Ok(RungSize {
+                    h: t_end / steps as f64,
+                    steps,
+                })
+            }
+        }
+    }
+}
+
+/// Runs one rung: against the exact solution, its global and final errors;
+/// without one, its states at the [`SAMPLES`] comparison times.
 fn run_rung<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
     t_end: f64,
     size: RungSize,
-) -> Rung {
+    reference: Reference,
+) -> (Rung, Option<Vec<State<D>>>) {
     let (mut worst, mut last) = (0.0f64, 0.0);
+    let mut sampled: Vec<State<D>> = Vec::new();
+    let every = size.steps / SAMPLES;
     let outcome = integrate(
         scheme,
         scene,
         &scene.initial(),
         size.h,
         size.steps,
-        |n, t, s| {
-            // the last step's time is t_end itself, not n h rounded
-            let t = if n == size.steps { t_end } else { t };
-            let exact = scene.exact(t).expect("checked before the ladder");
-            last = scene.phase_distance(s, &exact);
-            worst = worst.max(last);
+        |n, t, s| match reference {
+            Reference::Exact => {
+                // the last step's time is t_end itself, not n h rounded
+                let t = if n == size.steps { t_end } else { t };
+                let exact = scene.exact(t).expect("the reference is the exact solution");
+                last = scene.phase_distance(s, &exact);
+                worst = worst.max(last);
+            }
+            Reference::SuccessiveRungs => {
+                if n % every == 0 {
+                    sampled.push(*s);
+                }
+            }
         },
     );
     let done = outcome.completed();
-    Rung {
+    let exact = reference == Reference::Exact;
+    let rung = Rung {
         h: size.h,
         steps: size.steps,
-        error: done.then_some(worst),
-        final_error: done.then_some(last),
+        error: (done && exact).then_some(worst),
+        final_error: (done && exact).then_some(last),
         local_order: None,
         used: false,
         dropped: None,
         outcome,
+    };
+    (rung, (done && !exact).then_some(sampled))
+}
+
+/// Without an exact solution, the rung before the newest one is measured
+/// against it: the largest and the final distance over the sample times.
+fn compare_successive<S: Scene<D>, const D: usize>(
+    scene: &S,
+    rungs: &mut [Rung],
+    samples: &[Option<Vec<State<D>>>],
+) {
+    let k = rungs.len();
+    if k < 2 {
+        return;
+    }
+    if let (Some(coarse), Some(fine)) = (&samples[k - 2], &samples[k - 1]) {
+        let distances: Vec<f64> = coarse
+            .iter()
+            .zip(fine)
+            .map(|(a, b)| scene.phase_distance(a, b))
+            .collect();
+        rungs[k - 2].error = Some(distances.iter().copied().fold(0.0, f64::max));
+        rungs[k - 2].final_error = distances.last().copied();
     }
 }
 
-fn errors(rungs: &[Rung]) -> Vec<(f64, Option<f64>)> {
-    rungs.iter().map(|r| (r.h, r.error)).collect()
+/// The `(h, error)` data of the measured rungs (all but the finest when
+/// rungs are compared with each other).
+fn errors(rungs: &[Rung], reference: Reference) -> Vec<(f64, Option<f64>)> {
+    let measured = match reference {
+        Reference::Exact => rungs,
+        Reference::SuccessiveRungs => &rungs[..rungs.len().saturating_sub(1)],
+    };
+    measured.iter().map(|r| (r.h, r.error)).collect()
 }
 
 fn fill_local_orders(rungs: &mut [Rung]) {

@@ -4,7 +4,7 @@
 use serde_json::Value;
 use std::process::{Command, Output};
 
-fn run(args: &[&str]) -> Output {
+pub fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_stepladder"))
         .args(args)
         .output()
@@ -23,7 +23,7 @@ fn json(args: &[&str]) -> Value {
 
 /// Bad input: exit status 2, nothing on stdout, one line on stderr that
 /// contains `needle`.
-fn refused(args: &[&str], needle: &str) {
+pub fn refused(args: &[&str], needle: &str) {
     let out = run(args);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
@@ -182,106 +182,6 @@ fn a_failing_verdict_exits_with_status_1() {
 }
 
 #[test]
-fn bad_input_is_refused_with_a_one_line_message() {
-    fn order<'a>(extra: &[&'a str]) -> Vec<&'a str> {
-        let mut a = vec![
-            "order",
-            "--scheme",
-            "velocity-verlet",
-            "--scene",
-            "harmonic",
-        ];
-        a.extend_from_slice(extra);
-        a
-    }
-    refused(
-        &["order", "--scheme", "rk9", "--scene", "harmonic"],
-        "valid schemes: euler, euler-cromer",
-    );
-    refused(
-        &["order", "--scheme", "euler", "--scene", "mars"],
-        "valid scenes: harmonic, kepler-circular",
-    );
-    refused(&order(&["--h0", "-0.1"]), "h0 = -0.1 is invalid");
-    refused(&order(&["--h0", "0"]), "h0 = 0 is invalid");
-    refused(&order(&["--h0", "nan"]), "h0 = NaN is invalid");
-    refused(&order(&["--t-end", "inf"]), "t_end = inf is invalid");
-    refused(&order(&["--t-end", "-2"]), "t_end = -2 is invalid");
-    refused(&order(&["--ratio", "1.5"]), "ratio = 1.5 is invalid");
-    refused(
-        &order(&["--levels", "2"]),
-        "2 rungs cannot measure an order",
-    );
-    refused(
-        &order(&["--h0", "1e-9", "--levels", "8"]),
-        "refusing a run of",
-    );
-    refused(&order(&["--h0", "abc"]), "invalid value 'abc'");
-    refused(&["order", "--scene", "harmonic"], "--scheme");
-    refused(&["report", "--threads", "0"], "threads = 0 is invalid");
-    refused(
-        &[
-            "energy", "--scheme", "euler", "--scene", "harmonic", "--h", "-1",
-        ],
-        "h = -1 is invalid",
-    );
-    refused(
-        &[
-            "energy",
-            "--scheme",
-            "euler",
-            "--scene",
-            "harmonic",
-            "--periods",
-            "0",
-        ],
-        "periods = 0 is invalid",
-    );
-    refused(
-        &[
-            "energy", "--scheme", "euler", "--scene", "harmonic", "--h", "1e-12",
-        ],
-        "refusing a run of",
-    );
-    refused(
-        &[
-            "symplectic",
-            "--scheme",
-            "euler",
-            "--scene",
-            "harmonic",
-            "--h",
-            "nan",
-        ],
-        "h = NaN is invalid",
-    );
-    refused(
-        &[
-            "reverse", "--scheme", "euler", "--scene", "harmonic", "--steps", "0",
-        ],
-        "steps = 0 is invalid",
-    );
-    refused(
-        &["reverse", "--scheme", "rk9", "--scene", "harmonic"],
-        "valid schemes",
-    );
-    refused(&["frobnicate"], "unrecognized subcommand");
-    refused(
-        &["order", "--scheme", "euler", "--scene", "harmonic:w0=0"],
-        "w0 = 0 is invalid",
-    );
-    refused(
-        &["order", "--scheme", "euler", "--scene", "harmonic:spring=2"],
-        "its parameters: w0, x0, v0",
-    );
-    refused(
-        &["order", "--scheme", "euler", "--scene", "harmonic:w0"],
-        "expected name=number",
-    );
-    refused(&["stability", "--scheme", "rk9"], "valid schemes");
-}
-
-#[test]
 fn report_writes_where_told_and_refuses_an_unwritable_path() {
     let dir = std::env::temp_dir().join(format!("stepladder-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -302,4 +202,52 @@ fn report_writes_where_told_and_refuses_an_unwritable_path() {
     assert_eq!(out.status.code(), Some(2));
     assert!(!missing.exists());
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Every accuracy record is a pure function of its inputs: two runs of each
+/// `--json` study print the very same bytes.
+#[test]
+fn json_records_are_identical_across_runs() {
+    let studies: [&[&str]; 5] = [
+        &[
+            "order",
+            "--scheme",
+            "pefrl",
+            "--scene",
+            "kepler-eccentric",
+            "--json",
+        ],
+        &[
+            "energy",
+            "--scheme",
+            "rk4",
+            "--scene",
+            "anharmonic",
+            "--periods",
+            "100",
+            "--json",
+        ],
+        &[
+            "symplectic",
+            "--scheme",
+            "kahan-li8",
+            "--scene",
+            "kepler-circular",
+            "--json",
+        ],
+        &[
+            "reverse",
+            "--scheme",
+            "stormer-verlet",
+            "--scene",
+            "kepler-eccentric",
+            "--json",
+        ],
+        &["stability", "--scheme", "yoshida6", "--json"],
+    ];
+    for args in studies {
+        let (a, b) = (run(args), run(args));
+        assert!(a.status.success(), "{args:?}");
+        assert!(a.stdout == b.stdout, "{args:?} printed different records");
+    }
 }

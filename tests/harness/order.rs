@@ -72,3 +72,69 @@ fn the_order_does_not_depend_on_the_oscillator_parameters() {
         assert!(r.passed(), "w0 = {w0}: {}", r.reason);
     }
 }
+
+/// The oscillator with its exact solution hidden: the order measured from
+/// successive rungs must be the one measured against the exact solution.
+#[derive(Clone, Copy)]
+struct Unsolved(Harmonic);
+
+impl Scene<1> for Unsolved {
+    fn meta(&self) -> stepladder::scene::SceneMeta {
+        self.0.meta()
+    }
+    fn initial(&self) -> stepladder::state::State<1> {
+        self.0.initial()
+    }
+    fn acceleration<R: stepladder::state::Real>(
+        &self,
+        q: &nalgebra::SVector<R, 1>,
+    ) -> nalgebra::SVector<R, 1> {
+        self.0.acceleration(q)
+    }
+    fn potential<R: stepladder::state::Real>(&self, q: &nalgebra::SVector<R, 1>) -> R {
+        self.0.potential(q)
+    }
+    fn period(&self) -> f64 {
+        self.0.period()
+    }
+    fn exact(&self, _: f64) -> Option<stepladder::state::State<1>> {
+        None
+    }
+}
+
+#[test]
+fn without_an_exact_solution_successive_rungs_give_the_same_order() {
+    use stepladder::measure::order::Reference;
+    use stepladder::scheme::{Euler, Rk4};
+    let hidden = Unsolved(Harmonic::new(1.3, 0.4, 0.9).unwrap());
+    for (order, record) in [
+        (
+            1.0,
+            global_order(&Euler, &hidden, &OrderSpec::default()).unwrap(),
+        ),
+        (
+            2.0,
+            global_order(&VELOCITY_VERLET, &hidden, &OrderSpec::default()).unwrap(),
+        ),
+        (
+            4.0,
+            global_order(&Rk4, &hidden, &OrderSpec::default()).unwrap(),
+        ),
+    ] {
+        assert_eq!(record.reference, Reference::SuccessiveRungs);
+        assert!(record.passed(), "{}: {}", record.scheme, record.reason);
+        assert!(
+            (record.measured_order.unwrap() - order).abs() < 0.01,
+            "{}: {}",
+            record.scheme,
+            record.reason
+        );
+        // every rung is a multiple of the comparison times' count
+        assert!(
+            record
+                .rungs
+                .iter()
+                .all(|r| r.steps % stepladder::measure::order::SAMPLES == 0)
+        );
+    }
+}

@@ -147,3 +147,78 @@ proptest! {
         prop_assert!(worst < 1e-12, "modified energy moved by {worst:e}");
     }
 }
+
+/// Steps `n` times from `(x0, v0)` and compares with the closed form of the
+/// linear one-step map `M` (from one step of the two basis states): with
+/// eigenvalues `r e^(-+i t)`, `M^n = r^(n-1) (sin(n t) M - r sin((n-1) t) I) / sin t`
+/// (Cayley-Hamilton, `M^2 = 2 r cos t M - r^2 I`).
+struct ClosedForm {
+    w0: f64,
+    x0: f64,
+    v0: f64,
+    z: f64,
+    n: u64,
+}
+
+impl SchemeVisitor for &ClosedForm {
+    type Output = Result<(), String>;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output {
+        use stepladder::measure::phase::one_step_matrix;
+        let id = scheme.meta().id;
+        // the matrix of x'' = -x at step z; on w0 the same map in units of 1/w0
+        let m = one_step_matrix(scheme, self.z).ok_or(format!("{id}: no step"))?;
+        let (det, half_trace) = (m.determinant(), 0.5 * m.trace());
+        if half_trace * half_trace >= det {
+            return Ok(()); // real eigenvalues: outside the rotation regime
+        }
+        let r = det.sqrt();
+        let t = (half_trace / r).acos();
+        let n = self.n as f64;
+        let power = (m * (n * t).sin()
+            - nalgebra::Matrix2::identity() * (r * ((n - 1.0) * t).sin()))
+            * (r.powf(n - 1.0) / t.sin());
+        // the scene's state in the oscillator's units: (x, v / w0)
+        let osc = Harmonic::new(self.w0, self.x0, self.v0).unwrap();
+        let h = self.z / self.w0;
+        let mut end = osc.initial();
+        if !integrate(scheme, &osc, &osc.initial(), h, self.n, |_, _, s| end = *s).completed() {
+            return Ok(()); // grew past the blow-up bound: nothing to compare at the end
+        }
+        let expected = power * nalgebra::Vector2::new(self.x0, self.v0 / self.w0);
+        let size = self.x0.abs() + (self.v0 / self.w0).abs();
+        let miss =
+            ((end.q[0] - expected[0]).abs() + (end.v[0] / self.w0 - expected[1]).abs()) / size;
+        // round-off in n steps, and in the closed form's angle (n t to a few ulps)
+        let bound = 1e-13 * n.max(1.0) * power.amax().max(1.0);
+        if miss > bound {
+            return Err(format!(
+                "{id}: z = {}, n = {}: missed the closed form by {miss:e} (bound {bound:e})",
+                self.z, self.n
+            ));
+        }
+        Ok(())
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    /// On any oscillator and at any stable step, every scheme's trajectory
+    /// is its one-step matrix to the power `n`: the carry (two-step,
+    /// staggered, reused accelerations, implicit solves) adds nothing.
+    #[test]
+    fn the_numerical_oscillator_is_the_one_step_matrix_to_the_power_n(
+        w0 in 0.05f64..20.0,
+        x0 in -5.0f64..5.0,
+        v0 in -5.0f64..5.0,
+        z in 0.01f64..1.0,
+        n in 1u64..2000,
+    ) {
+        prop_assume!(x0.abs() + v0.abs() > 1e-3);
+        let case = ClosedForm { w0, x0, v0, z, n };
+        for id in scheme_ids() {
+            let result = visit_scheme(id, &case).unwrap();
+            prop_assert!(result.is_ok(), "{}", result.unwrap_err());
+        }
+    }
+}

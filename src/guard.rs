@@ -1,0 +1,171 @@
+//! One-line guards for a downstream crate's tests: measure a scheme's claims
+//! on a scene and panic, with the figures that decided it, if one fails.
+//!
+//! ```
+//! use stepladder::guard;
+//! use stepladder::scene::KeplerCircular;
+//! use stepladder::scheme::VELOCITY_VERLET;
+//!
+//! // order, symplecticity, reversibility and energy, each against its claim
+//! guard::assert_claims(&VELOCITY_VERLET, &KeplerCircular);
+//! ```
+//!
+//! Each guard returns the study's record, so a test can also pin it with
+//! insta in its own snapshot folder.
+
+use crate::measure::Verdict;
+use crate::measure::energy::{EnergyRecord, EnergySpec, energy_drift};
+use crate::measure::order::{OrderRecord, OrderSpec, global_order};
+use crate::measure::reverse::{ReverseRecord, ReverseSpec, reversibility};
+use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+use crate::scene::Scene;
+use crate::scheme::Scheme;
+
+/// Measures the global order with the automatic ladder; panics unless it
+/// agrees with `scheme.meta().order`.
+pub fn assert_order<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> OrderRecord {
+    let record = study(global_order(scheme, scene, &OrderSpec::default()));
+    if let Some(message) = order_failure(&record) {
+        panic!("{message}");
+    }
+    record
+}
+
+/// Takes the exact tangent map of a step; panics unless the measured
+/// symplecticity agrees with `scheme.meta().symplectic`.
+pub fn assert_symplectic<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+) -> SymplecticRecord {
+    let record = study(symplecticity(scheme, scene, &SymplecticSpec::default()));
+    if let Some(message) = symplectic_failure(&record) {
+        panic!("{message}");
+    }
+    record
+}
+
+/// Runs forward and back; panics unless the measured time symmetry agrees
+/// with `scheme.meta().symmetric`.
+pub fn assert_reversible<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+) -> ReverseRecord {
+    let record = study(reversibility(scheme, scene, &ReverseSpec::default()));
+    if let Some(message) = reverse_failure(&record) {
+        panic!("{message}");
+    }
+    record
+}
+
+/// Runs for 10^4 periods; panics unless the energy behaves as the scheme's
+/// claims imply (bounded if symplectic, drifting otherwise).
+pub fn assert_energy<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+) -> EnergyRecord {
+    let record = study(energy_drift(scheme, scene, &EnergySpec::default()));
+    if let Some(message) = energy_failure(&record) {
+        panic!("{message}");
+    }
+    record
+}
+
+/// Every guard above; panics once, listing every claim that failed.
+pub fn assert_claims<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) {
+    let failures: Vec<String> = [
+        order_failure(&study(global_order(scheme, scene, &OrderSpec::default()))),
+        symplectic_failure(&study(symplecticity(
+            scheme,
+            scene,
+            &SymplecticSpec::default(),
+        ))),
+        reverse_failure(&study(reversibility(
+            scheme,
+            scene,
+            &ReverseSpec::default(),
+        ))),
+        energy_failure(&study(energy_drift(scheme, scene, &EnergySpec::default()))),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A study that could not even run is a failure of the guard's setup.
+fn study<T>(result: Result<T, crate::error::Error>) -> T {
+    result.unwrap_or_else(|e| panic!("stepladder: the study could not run: {e}"))
+}
+
+/// The failure message of an order record, or `None` if it passed.
+pub fn order_failure(r: &OrderRecord) -> Option<String> {
+    (r.verdict == Verdict::Fail).then(|| {
+        let ladder = match (r.rungs.first(), r.rungs.last()) {
+            (Some(a), Some(b)) => format!("{} rungs, h = {:.3e} .. {:.3e}", r.rungs.len(), a.h, b.h),
+            _ => "no rungs".to_string(),
+        };
+        format!(
+            "stepladder: `{}` on `{}`: order {} claimed, measured {} in {} over rungs {}; ladder {ladder} to t_end = {}: {}",
+            r.scheme,
+            r.scene,
+            r.theoretical_order,
+            r.measured_order.map_or("nothing".into(), |p| format!("{p:.4}")),
+            r.ci95.map_or("no interval".into(), |c| format!("[{:.4}, {:.4}]", c[0], c[1])),
+            r.window.map_or("none".into(), |[a, b]| format!("{a}..{b}")),
+            r.t_end,
+            r.reason
+        )
+    })
+}
+
+/// The failure message of a symplecticity record, or `None` if it passed.
+pub fn symplectic_failure(r: &SymplecticRecord) -> Option<String> {
+    (r.verdict == Verdict::Fail).then(|| {
+        format!(
+            "stepladder: `{}` on `{}`: symplectic claimed {}, measured residual {:.3e} (tolerance {:e}), det(J) - 1 = {:.3e} over {} samples: {}",
+            r.scheme,
+            r.scene,
+            r.claimed,
+            r.symplectic_residual,
+            r.tolerance,
+            r.det_minus_one,
+            r.samples.len(),
+            r.reason
+        )
+    })
+}
+
+/// The failure message of a reversibility record, or `None` if it passed.
+pub fn reverse_failure(r: &ReverseRecord) -> Option<String> {
+    (r.verdict == Verdict::Fail).then(|| {
+        format!(
+            "stepladder: `{}` on `{}`: time-symmetric claimed {}, {} steps of h = {} and back return within {} ulps (tolerance {:.3e}): {}",
+            r.scheme,
+            r.scene,
+            r.claimed,
+            r.steps,
+            r.h,
+            r.return_ulps.map_or("-".into(), |u| format!("{u:.3e}")),
+            r.tolerance_ulps,
+            r.reason
+        )
+    })
+}
+
+/// The failure message of an energy record, or `None` if it passed.
+pub fn energy_failure(r: &EnergyRecord) -> Option<String> {
+    (r.verdict == Verdict::Fail).then(|| {
+        format!(
+            "stepladder: `{}` on `{}`: energy expected {}, measured {} (growth exponent {}, max relative error {:.3e}) over {} steps of h = {}: {}",
+            r.scheme,
+            r.scene,
+            r.expected.name(),
+            r.class.map_or("-", |c| c.name()),
+            r.growth_exponent.map_or("-".into(), |g| format!("{g:.3}")),
+            r.max_relative_energy_error,
+            r.steps,
+            r.h,
+            r.reason
+        )
+    })
+}
