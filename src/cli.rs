@@ -122,6 +122,9 @@ struct ReportArgs {
     /// Worker threads (default: every core); results do not depend on it.
     #[arg(long)]
     threads: Option<usize>,
+    /// Also draw the figures (SVG) into this directory.
+    #[arg(long)]
+    figures: Option<PathBuf>,
 }
 
 impl Default for ReportArgs {
@@ -129,6 +132,7 @@ impl Default for ReportArgs {
         Self {
             output: PathBuf::from(DEFAULT_REPORT),
             threads: None,
+            figures: None,
         }
     }
 }
@@ -321,6 +325,10 @@ fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
         eprintln!();
     }
     report::write_atomically(&args.output, &report::render(&records))?;
+    if let Some(dir) = &args.figures {
+        let written = report::figures::write_figures(dir, &records)?;
+        eprintln!("{} figures written to {}", written.len(), dir.display());
+    }
     print!("{}", report::order_table(&records.order()));
     println!();
     print!("{}", report::geometry_table(&records.cases));

@@ -12,6 +12,7 @@ use crate::measure::reverse::{ReverseRecord, ReverseSpec};
 use crate::measure::scene_check::{SceneCheck, check_scene};
 use crate::measure::stability::{StabilityRecord, stability};
 use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec};
+use crate::measure::trajectory::{TrajectoryRecord, earth_sun_experiments};
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
 use std::sync::Mutex;
@@ -44,6 +45,8 @@ pub struct SuiteRecords {
     pub stability: Vec<StabilityRecord>,
     /// The check of every scene.
     pub scenes: Vec<SceneCheck>,
+    /// The course notes' Earth-Sun experiments (Euler and velocity Verlet).
+    pub earth_sun: Vec<TrajectoryRecord>,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -152,6 +155,7 @@ pub fn run_suite(
         phase,
         stability,
         scenes,
+        earth_sun: earth_sun_experiments(),
         total: start.elapsed(),
         threads,
     })

@@ -10,6 +10,7 @@ pub mod scene_check;
 pub mod stability;
 pub mod symplectic;
 pub mod tangent;
+pub mod trajectory;
 
 use serde::Serialize;
 
