@@ -1,6 +1,6 @@
 //! Explicit (forward) Euler.
 
-use super::{PhaseError, Scheme, SchemeMeta, StepFailure};
+use super::{OneStep, PhaseError, SchemeMeta, StepFailure};
 use crate::scene::Scene;
 use crate::state::{Real, State};
 
@@ -30,24 +30,13 @@ impl Euler {
     };
 }
 
-impl Scheme for Euler {
-    type Carry<R: Real, const D: usize> = State<D, R>;
-
+impl OneStep for Euler {
     fn meta(&self) -> &SchemeMeta {
         &Self::META
     }
 
-    fn start<R: Real, const D: usize, S: Scene<D>>(
-        &self,
-        _: &S,
-        s: &State<D, R>,
-        _: R,
-    ) -> State<D, R> {
-        *s
-    }
-
     #[inline(always)]
-    fn step<R: Real, const D: usize, S: Scene<D>>(
+    fn advance<R: Real, const D: usize, S: Scene<D>>(
         &self,
         scene: &S,
         s: &mut State<D, R>,
@@ -57,9 +46,5 @@ impl Scheme for Euler {
         s.q += s.v * h;
         s.v += a * h;
         Ok(())
-    }
-
-    fn state<R: Real, const D: usize>(&self, s: &State<D, R>, _: R) -> State<D, R> {
-        *s
     }
 }

@@ -150,6 +150,74 @@ pub trait Scheme {
     }
 }
 
+/// The simplest kind of scheme: it carries nothing but the synchronised state
+/// from one step to the next. Implementing this is enough to be a
+/// [`Scheme`] (the carry is the [`State`], starting and reading it back are
+/// the identity).
+///
+/// ```
+/// use stepladder::scene::Scene;
+/// use stepladder::scheme::{OneStep, Scheme, SchemeMeta, StepFailure, Euler};
+/// use stepladder::state::{Real, State};
+///
+/// /// Symplectic Euler, drift first.
+/// struct DriftKick;
+/// impl OneStep for DriftKick {
+///     fn meta(&self) -> &SchemeMeta {
+///         &Euler::META // a real scheme states its own claims
+///     }
+///     fn advance<R: Real, const D: usize, S: Scene<D>>(&self, scene: &S, s: &mut State<D, R>, h: R) -> Result<(), StepFailure> {
+///         s.q += s.v * h;
+///         s.v += scene.acceleration(&s.q) * h;
+///         Ok(())
+///     }
+/// }
+/// assert_eq!(Scheme::meta(&DriftKick).id, "euler");
+/// ```
+pub trait OneStep {
+    /// The scheme's claims.
+    fn meta(&self) -> &SchemeMeta;
+
+    /// Advances the state by one step of size `h`.
+    fn advance<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        state: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure>;
+}
+
+impl<T: OneStep> Scheme for T {
+    type Carry<R: Real, const D: usize> = State<D, R>;
+
+    fn meta(&self) -> &SchemeMeta {
+        OneStep::meta(self)
+    }
+
+    fn start<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        _: &S,
+        state: &State<D, R>,
+        _: R,
+    ) -> State<D, R> {
+        *state
+    }
+
+    #[inline(always)]
+    fn step<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        state: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        self.advance(scene, state, h)
+    }
+
+    fn state<R: Real, const D: usize>(&self, state: &State<D, R>, _: R) -> State<D, R> {
+        *state
+    }
+}
+
 /// The carry of a one-step scheme that reuses the last acceleration: the
 /// state and `a(q)` at it.
 #[derive(Clone, Copy, Debug, PartialEq)]

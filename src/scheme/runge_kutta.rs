@@ -1,6 +1,6 @@
 //! Explicit Runge-Kutta methods on the first-order system `(q, v)' = (v, a(q))`.
 
-use super::{PhaseError, Scheme, SchemeMeta, StepFailure};
+use super::{OneStep, PhaseError, SchemeMeta, StepFailure};
 use crate::scene::Scene;
 use crate::state::{Real, State};
 
@@ -37,24 +37,13 @@ impl Rk4 {
     };
 }
 
-impl Scheme for Rk4 {
-    type Carry<R: Real, const D: usize> = State<D, R>;
-
+impl OneStep for Rk4 {
     fn meta(&self) -> &SchemeMeta {
         &Self::META
     }
 
-    fn start<R: Real, const D: usize, S: Scene<D>>(
-        &self,
-        _: &S,
-        s: &State<D, R>,
-        _: R,
-    ) -> State<D, R> {
-        *s
-    }
-
     #[inline(always)]
-    fn step<R: Real, const D: usize, S: Scene<D>>(
+    fn advance<R: Real, const D: usize, S: Scene<D>>(
         &self,
         scene: &S,
         s: &mut State<D, R>,
@@ -74,9 +63,5 @@ impl Scheme for Rk4 {
         s.q += (k1q + (k2q + k3q) * two + k4q) * sixth;
         s.v += (k1v + (k2v + k3v) * two + k4v) * sixth;
         Ok(())
-    }
-
-    fn state<R: Real, const D: usize>(&self, s: &State<D, R>, _: R) -> State<D, R> {
-        *s
     }
 }
