@@ -11,5 +11,6 @@ mod order;
 mod order_conditions;
 mod properties;
 mod report;
+mod roundoff;
 mod snapshots;
 mod stability;
