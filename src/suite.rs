@@ -44,6 +44,9 @@ pub struct SuiteRecords {
     pub stability: Vec<StabilityRecord>,
     /// The check of every scene.
     pub scenes: Vec<SceneCheck>,
+    /// Round-off floors and long runs of the Verlet forms and their
+    /// compensated variants.
+    pub roundoff: crate::roundoff_suite::RoundoffRecords,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -147,11 +150,13 @@ pub fn run_suite(
         .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
         .unzip();
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
+    let roundoff = crate::roundoff_suite::run_roundoff_suite(threads)?;
     Ok(SuiteRecords {
         cases,
         phase,
         stability,
         scenes,
+        roundoff,
         total: start.elapsed(),
         threads,
     })
