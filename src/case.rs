@@ -9,7 +9,7 @@ use crate::measure::order::{OrderRecord, OrderSpec, global_order};
 use crate::measure::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
 use crate::scene::{AnyScene, Scene, SceneMeta, SceneVisitor};
-use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor, visit_scheme};
+use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor};
 
 /// The studies that can be run on a scheme bound to a scene.
 pub trait Case: Send + Sync {
@@ -61,7 +61,7 @@ where
     }
 }
 
-/// Binds the catalogue scheme `scheme_id` to `scene`.
+/// Binds the catalogue scheme (or compensated variant) `scheme_id` to `scene`.
 ///
 /// ```
 /// use stepladder::case::case;
@@ -71,7 +71,7 @@ where
 /// assert!(case("rk9", &AnyScene::parse("harmonic").unwrap()).is_err());
 /// ```
 pub fn case(scheme_id: &str, scene: &AnyScene) -> Result<Box<dyn Case>, Error> {
-    visit_scheme(scheme_id, BindScheme(scene))
+    crate::scheme::compensated::visit_any_scheme(scheme_id, BindScheme(scene))
 }
 
 struct BindScheme<'a>(&'a AnyScene);

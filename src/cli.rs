@@ -49,6 +49,12 @@ enum Command {
     Symplectic(SymplecticArgs),
     /// Run forward, then back with -h, and measure how far from the start it ends.
     Reverse(ReverseArgs),
+    /// Error against the step down to the round-off floor, for the Verlet
+    /// forms beside their compensated-summation variants.
+    Roundoff(RoundoffArgs),
+    /// Follow a quantity the Verlet forms conserve exactly over millions of
+    /// steps: how round-off grows, with and without compensated summation.
+    Longrun(LongrunArgs),
     /// Find the steps z = h w0 for which a scheme is stable on the oscillator.
     Stability {
         /// Scheme id (see `stepladder list`).
@@ -137,6 +143,42 @@ impl Default for ReportArgs {
     }
 }
 
+#[derive(Debug, Args)]
+struct RoundoffArgs {
+    /// Scene id, optionally with parameters (default harmonic).
+    #[arg(long, default_value = "harmonic")]
+    scene: String,
+    /// Only the pair of this scheme (plain or compensated id; default: all three).
+    #[arg(long)]
+    scheme: Option<String>,
+    /// Length of each run in periods (default 1).
+    #[arg(long, allow_negative_numbers = true)]
+    periods: Option<f64>,
+    /// Finest step of the ladder, in steps per period (default 2^24).
+    #[arg(long)]
+    max_steps: Option<u64>,
+    /// Print the record as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Debug, Args)]
+struct LongrunArgs {
+    /// Scheme id: a Verlet form or its compensated variant (default: all six).
+    #[arg(long)]
+    scheme: Option<String>,
+    /// Scene id: harmonic (modified energy), kepler-circular or
+    /// kepler-eccentric (angular momentum); default harmonic.
+    #[arg(long, default_value = "harmonic")]
+    scene: String,
+    /// Steps of each run (default 2^22).
+    #[arg(long)]
+    steps: Option<u64>,
+    /// Print the records as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
 /// Where the report goes unless told otherwise.
 const DEFAULT_REPORT: &str = "REPORT.md";
 
@@ -204,6 +246,8 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Order(args) => order(&args),
+        Command::Roundoff(args) => roundoff(&args),
+        Command::Longrun(args) => longrun(&args),
         Command::Stability { scheme, json } => {
             let r = crate::scheme::visit_scheme(&scheme, StabilityOf)?;
             if json {
@@ -478,4 +522,64 @@ fn print_order(r: &OrderRecord) {
     }
     let verdict = if r.passed() { "PASS" } else { "FAIL" };
     println!("{verdict}: {}", r.reason);
+}
+
+fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {
+    use crate::measure::roundoff::{RoundoffSpec, assemble, roundoff, study_pair};
+    let scene = AnyScene::parse(&args.scene)?;
+    let spec = RoundoffSpec {
+        periods: args.periods,
+        max_steps: args.max_steps,
+    };
+    let record = match &args.scheme {
+        Some(id) => assemble(&scene, &spec, vec![study_pair(&scene, id, &spec)?])?,
+        None => roundoff(&scene, &spec)?,
+    };
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&record).expect("plain data serialises")
+        );
+    } else {
+        println!(
+            "{} ({}), {} periods, up to {} steps",
+            record.scene, record.scene_parameters, record.periods, record.max_steps
+        );
+        print!("{}", report::roundoff::floor_table(&record));
+        println!();
+        print!("{}", report::roundoff::law_table(&record));
+        for p in &record.pairs {
+            print!("{}", report::roundoff::pair_rungs(p));
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
+    use crate::measure::longrun::{LongrunSpec, longrun_of};
+    let scene = AnyScene::parse(&args.scene)?;
+    let spec = LongrunSpec { steps: args.steps };
+    let ids = match &args.scheme {
+        Some(id) => vec![id.as_str()],
+        None => crate::scheme::compensated::pair_ids(),
+    };
+    // refuse the whole request up front, not after some runs
+    let per_scheme = args
+        .steps
+        .unwrap_or(crate::measure::longrun::DEFAULT_STEPS)
+        .saturating_mul(crate::measure::longrun::RUNS as u64);
+    crate::ladder::check_cost(per_scheme.saturating_mul(ids.len() as u64))?;
+    let records = ids
+        .into_iter()
+        .map(|id| longrun_of(&scene, id, &spec))
+        .collect::<Result<Vec<_>, _>>()?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&records).expect("plain data serialises")
+        );
+    } else {
+        print!("{}", report::roundoff::longrun_table(&records));
+    }
+    Ok(ExitCode::SUCCESS)
 }

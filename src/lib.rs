@@ -6,14 +6,18 @@
 //!
 //! - [`scheme`]: the catalogue (explicit Euler, Euler-Cromer, Störmer-Verlet,
 //!   leap-frog, velocity and position Verlet, the implicit midpoint rule,
-//!   RK4, PEFRL and the Forest-Ruth, Yoshida and Kahan-Li compositions) and
-//!   the [`scheme::Scheme`] trait to bring your own.
+//!   RK4, PEFRL and the Forest-Ruth, Yoshida and Kahan-Li compositions),
+//!   compensated-summation variants of the Verlet forms
+//!   ([`scheme::compensated`]), and the [`scheme::Scheme`] trait to bring
+//!   your own.
 //! - [`scene`]: the harmonic oscillator, the circular Earth-Sun orbit, an
 //!   eccentric Kepler orbit and the anharmonic well (trapped orbits in Jacobi
 //!   elliptic functions, and its separatrix), with exact solutions; the
 //!   [`scene::Scene`] trait to bring your own.
 //! - [`measure`]: the studies; [`measure::order::global_order`] measures the
-//!   global order with a 95% interval over an automatically chosen window.
+//!   global order with a 95% interval over an automatically chosen window;
+//!   [`measure::roundoff`] and [`measure::longrun`] the round-off floors and
+//!   the growth of round-off over long runs.
 //! - [`guard`]: one-line assertions of a scheme's claims for a downstream
 //!   crate's tests, with the deciding figures in the failure message.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
@@ -38,6 +42,7 @@ pub mod guard;
 pub mod ladder;
 pub mod measure;
 pub mod report;
+pub mod roundoff_suite;
 pub mod run;
 pub mod scene;
 pub mod scheme;

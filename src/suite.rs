@@ -47,6 +47,9 @@ pub struct SuiteRecords {
     pub scenes: Vec<SceneCheck>,
     /// The course notes' Earth-Sun experiments (Euler and velocity Verlet).
     pub earth_sun: Vec<TrajectoryRecord>,
+    /// Round-off floors and long runs of the Verlet forms and their
+    /// compensated variants.
+    pub roundoff: crate::roundoff_suite::RoundoffRecords,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -105,8 +108,39 @@ pub fn run_case(c: &dyn Case) -> Result<CaseRecords, Error> {
     })
 }
 
-/// Where a worker leaves one case's result.
-type Slot = Mutex<Option<Result<CaseRecords, Error>>>;
+/// `f` on every item on `threads` scoped threads (at least one), results in
+/// item order whatever the thread count or the order of completion;
+/// `finished(done)` is called as each item completes.
+pub fn parallel_map<T: Sync, U: Send>(
+    items: &[T],
+    threads: usize,
+    f: impl Fn(&T) -> U + Sync,
+    finished: &(dyn Fn(usize, &T) + Sync),
+) -> Vec<U> {
+    let slots: Vec<Mutex<Option<U>>> = items.iter().map(|_| Mutex::new(None)).collect();
+    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    std::thread::scope(|scope| {
+        for _ in 0..threads.clamp(1, items.len().max(1)) {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(item) = items.get(i) else { break };
+                    let result = f(item);
+                    *slots[i].lock().expect("no panics while holding the lock") = Some(result);
+                    finished(done.fetch_add(1, Ordering::Relaxed) + 1, item);
+                }
+            });
+        }
+    });
+    slots
+        .into_iter()
+        .map(|slot| {
+            slot.into_inner()
+                .expect("no poisoned lock")
+                .expect("every item ran")
+        })
+        .collect()
+}
 
 /// Runs the suite on `threads` threads (at least one), calling
 /// `progress(done, total, case)` as each case finishes.
@@ -116,46 +150,26 @@ pub fn run_suite(
 ) -> Result<SuiteRecords, Error> {
     let cases = all_cases();
     let start = Instant::now();
-    let slots: Vec<Slot> = cases.iter().map(|_| Mutex::new(None)).collect();
-    let next = AtomicUsize::new(0);
-    let done = AtomicUsize::new(0);
     let threads = threads.clamp(1, cases.len().max(1));
-    std::thread::scope(|scope| {
-        for _ in 0..threads {
-            scope.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(c) = cases.get(i) else { break };
-                    let result = run_case(c.as_ref());
-                    *slots[i].lock().expect("no panics while holding the lock") = Some(result);
-                    progress(
-                        done.fetch_add(1, Ordering::Relaxed) + 1,
-                        cases.len(),
-                        c.as_ref(),
-                    );
-                }
-            });
-        }
-    });
-    let cases = slots
-        .into_iter()
-        .map(|slot| {
-            slot.into_inner()
-                .expect("no poisoned lock")
-                .expect("every case ran")
-        })
-        .collect::<Result<Vec<_>, Error>>()?;
+    let total = cases.len();
+    let cases = parallel_map(&cases, threads, |c| run_case(c.as_ref()), &|done, c| {
+        progress(done, total, c.as_ref())
+    })
+    .into_iter()
+    .collect::<Result<Vec<_>, Error>>()?;
     let (phase, stability) = scheme_ids()
         .into_iter()
         .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
         .unzip();
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
+    let roundoff = crate::roundoff_suite::run_roundoff_suite(threads)?;
     Ok(SuiteRecords {
         cases,
         phase,
         stability,
         scenes,
         earth_sun: earth_sun_experiments(),
+        roundoff,
         total: start.elapsed(),
         threads,
     })

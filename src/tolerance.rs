@@ -209,3 +209,58 @@ pub const STABILITY_SLACK: f64 = 1e-14;
 
 /// Width to which each stability boundary is bisected, in `z = h w0`.
 pub const STABILITY_BISECTION: f64 = 1e-10;
+
+// Round-off studies (`measure::roundoff`, `measure::longrun`).
+
+/// The round-off component of a plain scheme's error is fitted against the
+/// step over rungs of at least this many steps: a random walk of fewer
+/// roundings is too short for its size to follow its law (its spread from
+/// one realisation to the next is of the order of its mean), and the
+/// coarsest rungs cost nothing to leave out.
+pub const ROUND_OFF_FIT_STEPS: u64 = 1 << 10;
+
+/// A round-off ladder stops once this many successive rungs have failed to
+/// improve on the smallest error: past the floor a plain scheme's error grows
+/// with every halving (at least by `2^(1/2)` for a random walk), while one
+/// rung can fall below the last by chance (each rung is a new realisation of
+/// the rounding, whose size varies by a factor of about two), two in a row
+/// rarely do.
+pub const ROUND_OFF_PAST_FLOOR: usize = 2;
+
+/// Largest distance from 1/2 of the growth exponent fitted to a quantity
+/// that performs a random walk (the root mean square over the long runs' 16
+/// realisations, over two decades of time). The exponent of a true random
+/// walk is itself random: simulated ensembles of unbiased walks, sampled and
+/// fitted exactly like the long runs (`measure::longrun`'s tests), give
+/// exponents with mean 1/2 and standard deviation near 0.06, and 200 of them
+/// stay within 0.19 of 1/2. A quarter is four standard deviations, and the
+/// boundary of the energy study's random-walk class on either side; a bias
+/// of 5% of a step's spread moves the exponent past it.
+pub const RANDOM_WALK_EXPONENT_TOLERANCE: f64 = 0.25;
+
+/// Largest distance between the fitted exponent of a plain scheme's
+/// round-off against the step and the derived one (1/2 for velocity Verlet
+/// and leap-frog, 3/2 for the two-step form). Each rung is one realisation of
+/// the rounding, so rungs scatter by a factor of about two about the law, and
+/// the fit over four decades of steps moves by up to about 0.1; a quarter is
+/// halfway to the law of biased rounding (1 for the one-step forms), so it
+/// still tells an unbiased random walk from a biased one.
+pub const ROUND_OFF_EXPONENT_TOLERANCE: f64 = 0.25;
+
+/// The two-step form's floor over velocity Verlet's on the oscillator is at
+/// least this. Both have the same truncation error `C h^2`; the two-step
+/// form's round-off is `R' h^(-3/2)` against velocity Verlet's `R h^(-1/2)`,
+/// and the floors `(1 + 2/g) C h*^2` then differ by `(R/C)^(-8/35)` up to
+/// factors of order one: at least 500 for `C` of one period's phase error and
+/// per-step roundings anywhere from 0.1 to 10 units `u` for either scheme.
+/// 100 leaves a factor five below that.
+pub const TWO_STEP_FLOOR_RATIO: f64 = 100.0;
+
+/// A compensated variant's long-run change over its plain twin's is at most
+/// the reciprocal of this. The plain forms lose about `u` of the conserved
+/// quantity per step (the two-step form more), the compensated ones `u h w`,
+/// 16 times less at 100 steps a period; the rounding of the read-out, a few
+/// `eps` that do not accumulate, is far below the plain forms' random walk
+/// of `2^18` steps (hundreds of `eps`). A factor four leaves room for either
+/// estimate to be off by four.
+pub const COMPENSATED_LONGRUN_GAIN: f64 = 4.0;

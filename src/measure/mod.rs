@@ -3,9 +3,11 @@
 
 pub mod energy;
 pub mod fit;
+pub mod longrun;
 pub mod order;
 pub mod phase;
 pub mod reverse;
+pub mod roundoff;
 pub mod scene_check;
 pub mod stability;
 pub mod symplectic;

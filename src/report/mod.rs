@@ -3,6 +3,7 @@
 
 pub mod figures;
 mod markdown;
+pub mod roundoff;
 
 pub use markdown::Table;
 use markdown::{opt, order, sci, yes_no};
@@ -118,6 +119,7 @@ pub fn deterministic(records: &SuiteRecords) -> String {
             out.push_str(&rung_table(r));
         }
     }
+    out.push_str(&roundoff::sections(&records.roundoff));
     out
 }
 
@@ -538,6 +540,11 @@ fn timings(records: &SuiteRecords) -> String {
         "\n## Timings (machine-dependent)\n\nWhole suite: {:.2} s on {} threads.\n\n",
         records.total.as_secs_f64(),
         records.threads
+    );
+    let _ = writeln!(
+        out,
+        "Round-off floors and long runs (included above): {:.2} s.\n",
+        records.roundoff.time.as_secs_f64()
     );
     let mut t = Table::new(&["scheme", "scene", "steps", "wall time", "ns per step"]);
     for c in &records.cases {

@@ -7,6 +7,7 @@
 //! synchronised `(q, v)` at whole steps so they compare like with like.
 
 mod catalogue;
+pub mod compensated;
 mod composition;
 mod euler;
 mod implicit;
@@ -15,6 +16,10 @@ mod splitting;
 mod verlet;
 
 pub use catalogue::{SchemeVisitor, catalogue, scheme_ids, visit_scheme};
+pub use compensated::{
+    CompensatedSplitting, LeapfrogCompensated, StormerVerletCompensated,
+    VELOCITY_VERLET_COMPENSATED,
+};
 pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
 pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};

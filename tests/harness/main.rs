@@ -13,5 +13,6 @@ mod order;
 mod order_conditions;
 mod properties;
 mod report;
+mod roundoff;
 mod snapshots;
 mod stability;
