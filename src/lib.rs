@@ -14,6 +14,9 @@
 //!   [`scene::Scene`] trait to bring your own.
 //! - [`measure`]: the studies; [`measure::order::global_order`] measures the
 //!   global order with a 95% interval over an automatically chosen window.
+//! - [`hard`]: the hard cases: orders and energy on eccentric Kepler orbits,
+//!   how long a scheme follows the anharmonic well's separatrix, and whether
+//!   it tells an orbit just below the barrier from one just above.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
 //!
 //! ```
@@ -32,6 +35,7 @@
 pub mod case;
 pub mod cli;
 pub mod error;
+pub mod hard;
 pub mod ladder;
 pub mod measure;
 pub mod report;

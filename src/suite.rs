@@ -4,6 +4,7 @@
 
 use crate::case::{Case, case};
 use crate::error::Error;
+use crate::hard::{HardCases, HardQueue, hard_jobs};
 use crate::measure::Verdict;
 use crate::measure::energy::{EnergyRecord, EnergySpec};
 use crate::measure::order::{OrderRecord, OrderSpec};
@@ -44,6 +45,8 @@ pub struct SuiteRecords {
     pub stability: Vec<StabilityRecord>,
     /// The check of every scene.
     pub scenes: Vec<SceneCheck>,
+    /// The hard cases: eccentric orbits, the separatrix, escape or trapped.
+    pub hard: HardCases,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -117,6 +120,9 @@ pub fn run_suite(
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let threads = threads.clamp(1, cases.len().max(1));
+    // the hard cases' jobs are taken by whichever worker runs out of cases
+    // first, so no thread idles while the last long case finishes
+    let hard = HardQueue::new(hard_jobs());
     std::thread::scope(|scope| {
         for _ in 0..threads {
             scope.spawn(|| {
@@ -131,9 +137,11 @@ pub fn run_suite(
                         c.as_ref(),
                     );
                 }
+                hard.work();
             });
         }
     });
+    let hard = hard.finish()?;
     let cases = slots
         .into_iter()
         .map(|slot| {
@@ -152,6 +160,7 @@ pub fn run_suite(
         phase,
         stability,
         scenes,
+        hard,
         total: start.elapsed(),
         threads,
     })

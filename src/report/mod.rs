@@ -1,8 +1,13 @@
 //! REPORT.md from the suite's records. Nothing is computed here: every figure
 //! comes from a record, and the same records feed the CLI and the snapshots.
 
+mod hard;
 mod markdown;
 
+pub use hard::{
+    eccentric_energy_grid, eccentric_order_table, escape_table, following_rungs, following_table,
+    hard_cases_section, predicted_boundary, round_off_table,
+};
 pub use markdown::Table;
 use markdown::{opt, order, sci, yes_no};
 
@@ -88,7 +93,9 @@ pub fn deterministic(records: &SuiteRecords) -> String {
          stable for every step scanned.\n\n",
     );
     out.push_str(&stability_table(&records.stability));
-    out.push_str("\n## Error against step size\n\n");
+    out.push('\n');
+    out.push_str(&hard_cases_section(&records.hard));
+    out.push_str("## Error against step size\n\n");
     out.push_str(
         "Every rung of every ladder: `error` is the largest phase-space error over the \
          trajectory, `final` the error at `t_end`, `local` the local order against the \
@@ -445,6 +452,12 @@ fn timings(records: &SuiteRecords) -> String {
         "\n## Timings (machine-dependent)\n\nWhole suite: {:.2} s on {} threads.\n\n",
         records.total.as_secs_f64(),
         records.threads
+    );
+    let _ = writeln!(
+        out,
+        "Hard cases: {:.2} s of work over {} steps, shared among the same threads.\n",
+        records.hard.work.as_secs_f64(),
+        records.hard.steps()
     );
     let mut t = Table::new(&["scheme", "scene", "steps", "wall time", "ns per step"]);
     for c in &records.cases {
