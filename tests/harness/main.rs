@@ -6,6 +6,7 @@ mod catalogue;
 mod cli;
 mod common;
 mod geometry;
+mod hard;
 mod implicit;
 mod order;
 mod order_conditions;
