@@ -21,6 +21,8 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+mod hard;
+
 /// Is your time integrator as accurate, stable and geometric as it claims?
 #[derive(Debug, Parser)]
 #[command(name = "stepladder", version, about, long_about = None)]
@@ -55,6 +57,18 @@ enum Command {
     /// Follow a quantity the Verlet forms conserve exactly over millions of
     /// steps: how round-off grows, with and without compensated summation.
     Longrun(LongrunArgs),
+    /// Orders and energy on eccentric Kepler orbits (e = 0.5, 0.6, 0.9, 0.99),
+    /// and where a fixed step cannot resolve the pericentre (exit status 1
+    /// when an order verdict fails).
+    Eccentric(hard::EccentricArgs),
+    /// How long each scheme follows the separatrix of the anharmonic well
+    /// before falling back or escaping, against the step (exit status 1 when
+    /// the following times disagree with the linearised theory).
+    Separatrix(hard::SeparatrixArgs),
+    /// Does each scheme tell an orbit just below the well's barrier from one
+    /// just above it, and from which step down (exit status 1 when a scheme
+    /// has no correct step)?
+    Escape(hard::EscapeArgs),
     /// Find the steps z = h w0 for which a scheme is stable on the oscillator.
     Stability {
         /// Scheme id (see `stepladder list`).
@@ -248,6 +262,9 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         Command::Order(args) => order(&args),
         Command::Roundoff(args) => roundoff(&args),
         Command::Longrun(args) => longrun(&args),
+        Command::Eccentric(a) => hard::eccentric(&a),
+        Command::Separatrix(a) => hard::separatrix(&a),
+        Command::Escape(a) => hard::escape(&a),
         Command::Stability { scheme, json } => {
             let r = crate::scheme::visit_scheme(&scheme, StabilityOf)?;
             if json {

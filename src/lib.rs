@@ -18,6 +18,9 @@
 //!   global order with a 95% interval over an automatically chosen window;
 //!   [`measure::roundoff`] and [`measure::longrun`] the round-off floors and
 //!   the growth of round-off over long runs.
+//! - [`hard`]: the hard cases: orders and energy on eccentric Kepler orbits,
+//!   how long a scheme follows the anharmonic well's separatrix, and whether
+//!   it tells an orbit just below the barrier from one just above.
 //! - [`guard`]: one-line assertions of a scheme's claims for a downstream
 //!   crate's tests, with the deciding figures in the failure message.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
@@ -39,6 +42,7 @@ pub mod case;
 pub mod cli;
 pub mod error;
 pub mod guard;
+pub mod hard;
 pub mod ladder;
 pub mod measure;
 pub mod report;

@@ -4,6 +4,7 @@
 
 use crate::case::{Case, case};
 use crate::error::Error;
+use crate::hard::{HardCases, hard_jobs, run_hard_jobs};
 use crate::measure::Verdict;
 use crate::measure::energy::{EnergyRecord, EnergySpec};
 use crate::measure::order::{OrderRecord, OrderSpec};
@@ -50,6 +51,8 @@ pub struct SuiteRecords {
     /// Round-off floors and long runs of the Verlet forms and their
     /// compensated variants.
     pub roundoff: crate::roundoff_suite::RoundoffRecords,
+    /// The hard cases: eccentric orbits, the separatrix, escape or trapped.
+    pub hard: HardCases,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -162,6 +165,7 @@ pub fn run_suite(
         .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
         .unzip();
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
+    let hard = run_hard_jobs(hard_jobs(), threads)?;
     let roundoff = crate::roundoff_suite::run_roundoff_suite(threads)?;
     Ok(SuiteRecords {
         cases,
@@ -170,6 +174,7 @@ pub fn run_suite(
         scenes,
         earth_sun: earth_sun_experiments(),
         roundoff,
+        hard,
         total: start.elapsed(),
         threads,
     })

@@ -264,3 +264,112 @@ pub const TWO_STEP_FLOOR_RATIO: f64 = 100.0;
 /// of `2^18` steps (hundreds of `eps`). A factor four leaves room for either
 /// estimate to be off by four.
 pub const COMPENSATED_LONGRUN_GAIN: f64 = 4.0;
+// ---------------------------------------------------------------------------
+// The hard cases: eccentric orbits, the separatrix, escape or trapped.
+// ---------------------------------------------------------------------------
+
+/// End time of an eccentric-orbit rung, in periods: `sqrt(2)`, one full
+/// pericentre passage (at one period) after the half passage of the start,
+/// and an irrational multiple like the main study's `2 sqrt(2)`. Half the
+/// main study's length halves the cost of every rung; what a fixed step does
+/// to a pericentre passage is measured by the one full passage.
+pub const ECCENTRIC_PERIODS: f64 = std::f64::consts::SQRT_2;
+
+/// Largest rung of an eccentric-orbit ladder, in steps. Every step is
+/// compared with the exact solution (Kepler's equation solved to round-off,
+/// about ten times the cost of a Verlet step), so a ladder of ratio `r`
+/// costs up to `2^17 / (1 - r)` such evaluations: a few hundredths of a
+/// second for a scheme whose ladder runs to the cap, and the study runs 40
+/// ladders. The report states where this cap leaves a pericentre unresolved.
+pub const ECCENTRIC_MAX_RUNG_STEPS: u64 = 1 << 17;
+
+/// An eccentric ladder stops at a round-off floor only when its smallest
+/// error is below this fraction of the orbit's size. The round-off of the
+/// order study's schemes stays near `1e7 eps`, `2e-9` of the orbit, even
+/// through an `e = 0.99` passage (leap-frog's distance from velocity Verlet,
+/// the same map, measured in the report); a floor several hundred times
+/// higher is not round-off but a coarse rung whose error dipped and rose
+/// again, which the window search alone would take for a floor.
+pub const ECCENTRIC_ROUND_OFF_CEILING: f64 = 1e-6;
+
+/// Ratio of the eccentric ladders for schemes of order up to 2: `2^(-1/2)`,
+/// twice as many rungs per decade as the main study's halving, so that the
+/// window of six rungs fits between the step that first resolves an `e =
+/// 0.9` pericentre and the cap. (Higher orders keep the main study's
+/// `2^(-2/p)`.)
+pub const ECCENTRIC_LOW_ORDER_RATIO: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// Steps per pericentre time scale `tau_p = r_p / v_p` of the energy runs on
+/// eccentric orbits: the same resolution of the passage for every `e`, so
+/// their energy errors can be compared (a fixed step per period would
+/// resolve `e = 0.5` with 22 steps per `tau_p` and `e = 0.99` with 0.09).
+pub const ENERGY_STEPS_PER_PERICENTRE: f64 = 8.0;
+
+/// Periods of every eccentric energy run: four apocentre passages, three
+/// full pericentre passages between them, enough to tell an energy that
+/// returns to the same value after every passage from one that changes by
+/// the same amount at each (by three times its offset at the first
+/// apocentre, against round-off for a symplectic scheme). At `e = 0.99` and
+/// `tau_p / 8` a period is 71 000 steps, so every further period costs
+/// nearly a second over the catalogue.
+pub const ECCENTRIC_ENERGY_PERIODS: f64 = 4.0;
+
+/// An eccentric orbit's energy is drifting when its value at apocentre
+/// changes over the run by more than this fraction of its offset from `E0`
+/// there (plus round-off, [`round_off_energy`]). A symplectic scheme's
+/// apocentre energy is the same after every passage to round-off, 1e-10 of
+/// the offset or less; a scheme that loses or gains a fixed amount per
+/// passage changes it by about `2 (apocentres - 1)` offsets (the start is
+/// half a passage). A tenth lies far from both.
+pub const ECCENTRIC_DRIFT_FRACTION: f64 = 0.1;
+
+/// The separatrix study fits only rungs whose energy offset at the barrier
+/// is below this fraction of `E_b`. The following time `T = ln(64 E_b /
+/// |dE|) / (2 lambda)` is the leading term of the quarter period `K(m) /
+/// Omega` near `m = 1`; its corrections are of relative order `sqrt(|dE| /
+/// E_b)` (from `Omega^2 = k (1 + s) / 2` and `1 - m ~ 2 s`, `s = sqrt(|dE| /
+/// E_b)`), 1% here, which bends the fitted slopes by less than that.
+pub const SEPARATRIX_OFFSET_CEILING: f64 = 1e-4;
+
+/// Relative tolerance on the slopes of the separatrix study against theory
+/// (`1 / (2 lambda)` per unit of `ln(1/|dE|)`, `p / (2 lambda)` per unit of
+/// `ln(1/h)`). Inside the window, the `sqrt(|dE| / E_b)` correction above
+/// moves a local slope by at most 1%, and the next term of the energy
+/// offset's expansion in `h` (relatively `O(h)` for first-order schemes,
+/// `O(h^2)` for symmetric ones) by less at the steps that reach an offset of
+/// `1e-4`; 3% is their sum with room to spare, and a slope computed with
+/// the wrong rate `sqrt(k)` instead of `sqrt(2 k)` misses by 41%.
+pub const SEPARATRIX_SLOPE_TOLERANCE: f64 = 0.03;
+
+/// The separatrix runs end without an event at this many time scales
+/// `1 / sqrt(k)`: round-off alone sends an exact scheme off the separatrix
+/// after `ln(64 / eps) / (2 sqrt(2)) ~ 14` of them.
+pub const SEPARATRIX_TIME_LIMIT: f64 = 40.0;
+
+/// The separatrix ladder stops at this step (in units of `1 / sqrt(k)`): the
+/// finest rung of a first-order scheme then takes about `10^6` steps.
+pub const SEPARATRIX_MIN_STEP: f64 = 1.0 / 131072.0;
+
+/// A numerical orbit has departed from the separatrix once its phase-space
+/// distance from the exact one exceeds this fraction of `alpha`: small enough
+/// that the deviation still grows like `e^(lambda t)` (the force is linear
+/// near the barrier top to 1% at this distance), large enough to lie beyond
+/// the closest approach `~ alpha sqrt(|dE| / E_b)` of every fitted rung.
+pub const DEPARTURE_FRACTION: f64 = 0.1;
+
+/// Length of each escape-or-trapped run, in periods of the trapped orbit
+/// (its exact period `4 K(m) / Omega`): several chances to escape at either
+/// barrier, so a scheme whose energy drifts is caught too.
+pub const ESCAPE_PERIODS: f64 = 4.0;
+
+/// Largest escape-or-trapped run, in steps; a scheme that classifies no
+/// step correctly above the step this allows is reported as such.
+pub const ESCAPE_MAX_STEPS: u64 = 1 << 21;
+
+/// The escape scan confirms a correct step by checking every scan point down
+/// to this fraction of it (a factor 2, four scan points).
+pub const ESCAPE_CONFIRM_FACTOR: f64 = 0.5;
+
+/// Bisections of the largest correct step between two scan points a factor
+/// `2^(1/4)` apart: ten leave it known to 0.02%.
+pub const ESCAPE_BISECTIONS: u32 = 10;

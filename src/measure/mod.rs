@@ -1,8 +1,11 @@
 //! Studies: each turns runs of one scheme on one scene into a record, plain
 //! serde data that feeds the CLI's `--json`, the snapshots and the report.
 
+pub mod eccentric;
 pub mod energy;
+pub mod escape;
 pub mod fit;
+pub mod following;
 pub mod longrun;
 pub mod order;
 pub mod phase;

@@ -2,9 +2,14 @@
 //! comes from a record, and the same records feed the CLI and the snapshots.
 
 pub mod figures;
+mod hard;
 mod markdown;
 pub mod roundoff;
 
+pub use hard::{
+    eccentric_energy_grid, eccentric_order_table, escape_table, following_rungs, following_table,
+    hard_cases_section, predicted_boundary, round_off_table,
+};
 pub use markdown::Table;
 use markdown::{opt, order, sci, yes_no};
 
@@ -106,7 +111,9 @@ pub fn deterministic(records: &SuiteRecords) -> String {
     out.push_str("A scheme stable for every step (no limit) has no bar.\n");
     out.push_str("\n## The Earth-Sun experiments\n\n");
     out.push_str(&earth_sun(&records.earth_sun));
-    out.push_str("\n## Error against step size\n\n");
+    out.push('\n');
+    out.push_str(&hard_cases_section(&records.hard));
+    out.push_str("## Error against step size\n\n");
     out.push_str(
         "Every rung of every ladder: `error` is the largest phase-space error over the \
          trajectory, `final` the error at `t_end`, `local` the local order against the \
@@ -545,6 +552,12 @@ fn timings(records: &SuiteRecords) -> String {
         out,
         "Round-off floors and long runs (included above): {:.2} s.\n",
         records.roundoff.time.as_secs_f64()
+    );
+    let _ = writeln!(
+        out,
+        "Hard cases: {:.2} s of work over {} steps, shared among the same threads.\n",
+        records.hard.work.as_secs_f64(),
+        records.hard.steps()
     );
     let mut t = Table::new(&["scheme", "scene", "steps", "wall time", "ns per step"]);
     for c in &records.cases {

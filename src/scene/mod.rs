@@ -11,12 +11,14 @@ mod harmonic;
 mod kepler;
 mod separatrix;
 mod well;
+mod well_orbit;
 
 pub use anharmonic::Anharmonic;
 pub use counted::Counted;
 pub use harmonic::Harmonic;
 pub use kepler::{KeplerCircular, KeplerEccentric};
 pub use separatrix::Separatrix;
+pub use well_orbit::WellOrbit;
 
 use crate::error::Error;
 use crate::state::{Real, State};

@@ -8,6 +8,7 @@ mod cli;
 mod common;
 mod figures;
 mod geometry;
+mod hard;
 mod implicit;
 mod order;
 mod order_conditions;

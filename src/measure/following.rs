@@ -1,0 +1,467 @@
+//! How long a scheme follows the separatrix of the anharmonic well before
+//! its orbit falls back into the well or escapes over the barrier.
+//!
+//! # Theory
+//!
+//! The well `x'' = -k x + k x^3 / alpha^2` has its barrier tops at `x =
+//! -+alpha`, where the force's slope is `a'(alpha) = -k + 3k = 2k`: near the
+//! top `u = x - alpha` obeys `u'' = lambda^2 u` with `lambda = sqrt(2k)`
+//! (not `sqrt(k)`, the frequency at the bottom). So `u = A e^(lambda t) + B
+//! e^(-lambda t)`, `v = lambda (A e^(lambda t) - B e^(-lambda t))`, and the
+//! energy relative to the barrier is `E - E_b = v^2/2 - lambda^2 u^2 / 2 =
+//! -2 lambda^2 A B`. The separatrix `x = alpha tanh(lambda t / 2)` is the
+//! orbit `A = 0`, approaching the top as `u ~ -2 alpha e^(-lambda t)` (`B =
+//! -2 alpha`). A numerical orbit carries an energy error `dE` into the
+//! barrier region, hence `A = dE / (4 lambda^2 alpha)`, and:
+//!
+//! - it **falls back** (`v = 0`, when `dE < 0`) or **escapes** (`u = 0`, when
+//!   `dE > 0`) at the closest approach `|A| e^(lambda T) = |B| e^(-lambda
+//!   T)`, that is at `T = ln(8 lambda^2 alpha^2 / |dE|) / (2 lambda) =
+//!   ln(64 E_b / |dE|) / (2 lambda)`. For `dE < 0` this is the leading term
+//!   of the trapped orbit's quarter period `K(m) / Omega` as `m -> 1`;
+//! - its distance from the separatrix, `|A| e^(lambda t)`, reaches a fixed
+//!   size `D` at `T_D = ln(D / |A|) / lambda`, twice as steep in `ln |dE|`.
+//!
+//! A scheme whose energy error at the barrier is `dE ~ c h^q` therefore
+//! follows the separatrix for `T = (q / (2 lambda)) ln(1/h) + const` and
+//! departs from it at `T_D = (q / lambda) ln(1/h) + const`. For a symplectic
+//! scheme of order `p`, `dE = h^p (H_p(start) - H_p(top)) + ...` from its
+//! modified Hamiltonian, and every `H_j` of a splitting vanishes at the top
+//! (`v = 0`, `V' = 0`), so `q = p` unless `H_p` also vanishes at the start;
+//! velocity Verlet's `H_2 = V''(v, v) / 12 - |V'|^2 / 24` gives `dE = k h^2
+//! E_b / 6 > 0` (it escapes), position Verlet's `-V''(v, v) / 24 + |V'|^2 /
+//! 12` gives `dE = -k h^2 E_b / 12` (it falls back). The study measures `T`,
+//! `T_D` and `dE` on a ladder of steps and fits the three slopes.
+
+use super::fit::{PowerLaw, power_law};
+use super::order::{DropReason, local_order, select_window};
+use crate::error::Error;
+use crate::scene::{Scene, Separatrix};
+use crate::scheme::Scheme;
+use crate::tolerance::{
+    self, DEPARTURE_FRACTION, ERROR_CEILING, SEPARATRIX_MIN_STEP, SEPARATRIX_OFFSET_CEILING,
+    SEPARATRIX_SLOPE_TOLERANCE, SEPARATRIX_TIME_LIMIT, WINDOW_RUNGS,
+};
+use serde::Serialize;
+use statrs::distribution::{ContinuousCDF, StudentsT};
+
+/// The well of the study: `k`, `alpha`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct WellSpec {
+    /// Stiffness at the bottom.
+    pub k: f64,
+    /// Barrier position.
+    pub alpha: f64,
+}
+
+impl Default for WellSpec {
+    /// The course notes' `k = alpha = 1`.
+    fn default() -> Self {
+        Self { k: 1.0, alpha: 1.0 }
+    }
+}
+
+impl WellSpec {
+    /// The rate `lambda = sqrt(2k)` at which neighbouring orbits separate at
+    /// the barrier top.
+    pub fn barrier_rate(&self) -> f64 {
+        (2.0 * self.k).sqrt()
+    }
+}
+
+/// How a run on the separatrix ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Event {
+    /// The velocity reached zero inside the well (`x < alpha`): the orbit
+    /// turned back.
+    FallsBack,
+    /// The position passed the barrier top `x = alpha`.
+    Escapes,
+    /// Neither within [`SEPARATRIX_TIME_LIMIT`].
+    Followed,
+    /// A step failed or the state stopped being finite first.
+    Failed,
+}
+
+impl Event {
+    /// The kebab-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Event::FallsBack => "falls back",
+            Event::Escapes => "escapes",
+            Event::Followed => "followed",
+            Event::Failed => "failed",
+        }
+    }
+}
+
+/// One step size of the study.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FollowingRung {
+    /// The step.
+    pub h: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// How the run ended.
+    pub event: Event,
+    /// When the orbit fell back or escaped (interpolated between steps).
+    pub time: Option<f64>,
+    /// `(E - E_b) / E_b` at that step: the energy error the orbit carried
+    /// to the barrier.
+    pub barrier_offset: Option<f64>,
+    /// `ln(64 / |offset|) / (2 lambda)`, the time the linearised theory
+    /// predicts for that offset.
+    pub predicted_time: Option<f64>,
+    /// When the phase-space distance from the exact separatrix first exceeded
+    /// [`DEPARTURE_FRACTION`] of `alpha` (interpolated between steps).
+    pub departure: Option<f64>,
+    /// The local exponent of `|offset|` against the previous rung.
+    pub local_exponent: Option<f64>,
+    /// In the fitted window.
+    pub used: bool,
+    /// Why not, when judged.
+    pub dropped: Option<DropReason>,
+}
+
+/// A straight line `y = intercept + slope x` by least squares, with the
+/// slope's Student's t 95% interval.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct LineFit {
+    /// The slope.
+    pub slope: f64,
+    /// The intercept.
+    pub intercept: f64,
+    /// The slope's standard error.
+    pub standard_error: f64,
+    /// `slope -+ t(0.975, n - 2) standard_error`.
+    pub ci95: [f64; 2],
+    /// Points fitted.
+    pub points: usize,
+}
+
+/// Fits a line through `(x, y)`; `None` with fewer than three points or no
+/// spread in `x`.
+pub fn line_fit(points: &[(f64, f64)]) -> Option<LineFit> {
+    let n = points.len();
+    if n < 3 || points.iter().any(|(x, y)| !x.is_finite() || !y.is_finite()) {
+        return None;
+    }
+    let nf = n as f64;
+    let mx = points.iter().map(|p| p.0).sum::<f64>() / nf;
+    let my = points.iter().map(|p| p.1).sum::<f64>() / nf;
+    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    if sxx <= 0.0 {
+        return None;
+    }
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let residual: f64 = points
+        .iter()
+        .map(|p| (p.1 - intercept - slope * p.0).powi(2))
+        .sum();
+    let standard_error = (residual / (nf - 2.0) / sxx).sqrt();
+    let t = StudentsT::new(0.0, 1.0, nf - 2.0)
+        .map(|d| d.inverse_cdf(0.975))
+        .unwrap_or(f64::NAN);
+    Some(LineFit {
+        slope,
+        intercept,
+        standard_error,
+        ci95: [slope - t * standard_error, slope + t * standard_error],
+        points: n,
+    })
+}
+
+/// What the separatrix study found for one scheme.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FollowingRecord {
+    /// Scheme id.
+    pub scheme: &'static str,
+    /// Its claimed order `p`.
+    pub order: u32,
+    /// Whether it claims to be symplectic.
+    pub symplectic: bool,
+    /// The well.
+    pub well: WellSpec,
+    /// `lambda = sqrt(2k)`.
+    pub lambda: f64,
+    /// The event of every fitted rung, when they agree.
+    pub event: Option<Event>,
+    /// First and last rung fitted.
+    pub window: Option<[usize; 2]>,
+    /// `|dE| / E_b = C h^q` over the window: `q` is the slope.
+    pub offset_law: Option<PowerLaw>,
+    /// The signed coefficient `dE / (E_b h^q)` at the window's finest rung.
+    pub offset_coefficient: Option<f64>,
+    /// `T` against `ln(1/h)`; theory `q / (2 lambda)`.
+    pub slope_in_step: Option<LineFit>,
+    /// `T` against `ln(E_b / |dE|)`; theory `1 / (2 lambda)`.
+    pub slope_in_offset: Option<LineFit>,
+    /// `T_D` against `ln(1/h)`; theory `q / lambda`.
+    pub departure_slope: Option<LineFit>,
+    /// The longest following time of any rung.
+    pub longest_time: Option<f64>,
+    /// The slopes agree with the linearised theory.
+    pub consistent: bool,
+    /// Why, in one line.
+    pub reason: String,
+    /// Every rung, coarse to fine.
+    pub rungs: Vec<FollowingRung>,
+    /// Steps taken over all rungs.
+    pub steps: u64,
+}
+
+/// The ratio of the ladder for a scheme of order `p`: `2^(-1/2)` up to
+/// fourth order, `2^(-2/p)` above, so that the energy offset falls by a
+/// factor of about 4 to 6 per rung whatever the order.
+pub fn following_ratio(order: u32) -> f64 {
+    2f64.powf(-(0.5f64).min(2.0 / order.max(1) as f64))
+}
+
+/// Runs `scheme` on the separatrix of `well` over a ladder from `h =
+/// 1/sqrt(k)` down to [`SEPARATRIX_MIN_STEP`] (in units of `1/sqrt(k)`),
+/// stopping once the offset's local exponents have settled over a full
+/// window or the offsets have reached the round-off floor.
+pub fn following<M: Scheme>(scheme: &M, well: WellSpec) -> Result<FollowingRecord, Error> {
+    let sep = Separatrix::new(well.k, well.alpha)?;
+    let meta = scheme.meta();
+    let lambda = well.barrier_rate();
+    let unit = 1.0 / well.k.sqrt();
+    let ratio = following_ratio(meta.order);
+    // the ceiling of the window search is the offset ceiling
+    let scale = SEPARATRIX_OFFSET_CEILING / ERROR_CEILING;
+    let mut rungs: Vec<FollowingRung> = Vec::new();
+    for j in 0.. {
+        let h = unit * ratio.powi(j);
+        if h < SEPARATRIX_MIN_STEP * unit {
+            break;
+        }
+        rungs.push(run_rung(scheme, &sep, well, h));
+        let data = offsets(&rungs);
+        let choice = select_window(&data, scale);
+        let settled = choice.window_len() >= WINDOW_RUNGS
+            && choice.spread
+                <= tolerance::settled_tolerance(choice.median_local_order.unwrap_or(1.0));
+        if settled || choice.at_floor >= 2 {
+            break;
+        }
+    }
+    let data = offsets(&rungs);
+    for k in 1..rungs.len() {
+        rungs[k].local_exponent = local_order(data[k - 1], data[k]);
+    }
+    let choice = select_window(&data, scale);
+    for (r, d) in rungs.iter_mut().zip(&choice.dropped) {
+        r.dropped = *d;
+    }
+    let window = choice.window.map(|(a, b)| [a, b]);
+    if let Some([a, b]) = window {
+        rungs[a..=b].iter_mut().for_each(|r| r.used = true);
+    }
+    let fitted: Vec<&FollowingRung> = rungs.iter().filter(|r| r.used).collect();
+    let event = fitted
+        .first()
+        .map(|r| r.event)
+        .filter(|e| fitted.iter().all(|r| r.event == *e));
+    let offset_law = power_law(
+        &fitted
+            .iter()
+            .filter_map(|r| Some((r.h, r.barrier_offset?.abs())))
+            .collect::<Vec<_>>(),
+    );
+    let offset_coefficient = offset_law.and_then(|law| {
+        let r = fitted.last()?;
+        Some(r.barrier_offset? / r.h.powf(law.slope))
+    });
+    let slope_in_step = line_fit(
+        &fitted
+            .iter()
+            .filter_map(|r| Some(((1.0 / r.h).ln(), r.time?)))
+            .collect::<Vec<_>>(),
+    );
+    let slope_in_offset = line_fit(
+        &fitted
+            .iter()
+            .filter_map(|r| Some(((1.0 / r.barrier_offset?.abs()).ln(), r.time?)))
+            .collect::<Vec<_>>(),
+    );
+    let departure_slope = line_fit(
+        &fitted
+            .iter()
+            .filter_map(|r| Some(((1.0 / r.h).ln(), r.departure?)))
+            .collect::<Vec<_>>(),
+    );
+    let longest_time = rungs
+        .iter()
+        .filter_map(|r| r.time)
+        .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.max(t))));
+    let (consistent, reason) = judge(lambda, offset_law, slope_in_step, slope_in_offset);
+    let steps = rungs.iter().map(|r| r.steps).sum();
+    Ok(FollowingRecord {
+        scheme: meta.id,
+        order: meta.order,
+        symplectic: meta.symplectic,
+        well,
+        lambda,
+        event,
+        window,
+        offset_law,
+        offset_coefficient,
+        slope_in_step,
+        slope_in_offset,
+        departure_slope,
+        longest_time,
+        consistent,
+        reason,
+        rungs,
+        steps,
+    })
+}
+
+/// The theory check: `T` against `ln(E_b/|dE|)` must have slope `1 /
+/// (2 lambda)`, and against `ln(1/h)` slope `q / (2 lambda)` with `q` the
+/// exponent of the offsets themselves, each within
+/// [`SEPARATRIX_SLOPE_TOLERANCE`].
+fn judge(
+    lambda: f64,
+    law: Option<PowerLaw>,
+    in_step: Option<LineFit>,
+    in_offset: Option<LineFit>,
+) -> (bool, String) {
+    let (Some(law), Some(in_step), Some(in_offset)) = (law, in_step, in_offset) else {
+        return (
+            false,
+            "no window of asymptotic rungs: too few runs with a barrier energy offset between \
+             round-off and the offset ceiling"
+                .into(),
+        );
+    };
+    let theory = 1.0 / (2.0 * lambda);
+    let off = (in_offset.slope / theory - 1.0).abs();
+    let step_theory = law.slope * theory;
+    let step = (in_step.slope / step_theory - 1.0).abs();
+    let ok = off <= SEPARATRIX_SLOPE_TOLERANCE && step <= SEPARATRIX_SLOPE_TOLERANCE;
+    (
+        ok,
+        format!(
+            "T against ln(E_b/|dE|): slope {:.4} vs 1/(2 lambda) = {theory:.4} (off by {:.1}%); \
+             dE ~ h^{:.3}, so T against ln(1/h): slope {:.4} vs {:.3}/(2 lambda) = {step_theory:.4} \
+             (off by {:.1}%)",
+            in_offset.slope,
+            100.0 * off,
+            law.slope,
+            in_step.slope,
+            law.slope,
+            100.0 * step
+        ),
+    )
+}
+
+fn offsets(rungs: &[FollowingRung]) -> Vec<(f64, Option<f64>)> {
+    rungs
+        .iter()
+        .map(|r| (r.h, r.barrier_offset.map(f64::abs)))
+        .collect()
+}
+
+/// One run: from the separatrix's start until the orbit falls back or
+/// escapes, then on until it has departed from the exact separatrix (or
+/// runs away past the barrier, or the time limit).
+fn run_rung<M: Scheme>(scheme: &M, sep: &Separatrix, well: WellSpec, h: f64) -> FollowingRung {
+    let lambda = well.barrier_rate();
+    let eb = sep.barrier();
+    let alpha = well.alpha;
+    let t_max = SEPARATRIX_TIME_LIMIT / well.k.sqrt();
+    let max_steps = (t_max / h).ceil() as u64;
+    let start = sep.initial();
+    let mut carry = scheme.start(sep, &start, h);
+    let mut last = start;
+    let mut out = FollowingRung {
+        h,
+        steps: 0,
+        event: Event::Followed,
+        time: None,
+        barrier_offset: None,
+        predicted_time: None,
+        departure: None,
+        local_exponent: None,
+        used: false,
+        dropped: None,
+    };
+    let mut decided = false;
+    let mut last_distance = 0.0;
+    for n in 1..=max_steps {
+        out.steps = n;
+        let t = n as f64 * h;
+        if scheme.step(sep, &mut carry, h).is_err() {
+            if !decided {
+                out.event = Event::Failed;
+            }
+            break;
+        }
+        let s = scheme.state(&carry, h);
+        if !s.is_finite() {
+            if !decided {
+                out.event = Event::Failed;
+            }
+            break;
+        }
+        if out.departure.is_none() {
+            let exact = sep.exact(t).expect("the separatrix has a closed form");
+            let d = sep.phase_distance(&s, &exact);
+            let limit = DEPARTURE_FRACTION * alpha;
+            if d > limit {
+                // interpolated between the steps, like the events
+                out.departure = Some(t - h + h * (limit - last_distance) / (d - last_distance));
+            }
+            last_distance = d;
+        }
+        if !decided {
+            let (x, v) = (s.q[0], s.v[0]);
+            let event = if x >= alpha {
+                let f = (alpha - last.q[0]) / (x - last.q[0]);
+                Some((Event::Escapes, t - h + f * h))
+            } else if v <= 0.0 {
+                let f = last.v[0] / (last.v[0] - v);
+                Some((Event::FallsBack, t - h + f * h))
+            } else {
+                None
+            };
+            if let Some((event, time)) = event {
+                decided = true;
+                let offset = (sep.energy(&s) - eb) / eb;
+                out.event = event;
+                out.time = Some(time);
+                out.barrier_offset = Some(offset);
+                out.predicted_time =
+                    (offset != 0.0).then(|| (64.0 / offset.abs()).ln() / (2.0 * lambda));
+            }
+        }
+        if decided && (out.departure.is_some() || s.q[0].abs() > 10.0 * alpha) {
+            break;
+        }
+        last = s;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_fit_recovers_a_line() {
+        let pts: Vec<(f64, f64)> = (0..6).map(|i| (i as f64, 2.0 + 0.5 * i as f64)).collect();
+        let f = line_fit(&pts).unwrap();
+        assert!((f.slope - 0.5).abs() < 1e-14 && (f.intercept - 2.0).abs() < 1e-13);
+        assert!(line_fit(&pts[..2]).is_none());
+    }
+
+    #[test]
+    fn ladder_ratio() {
+        assert_eq!(following_ratio(2), following_ratio(4));
+        assert!((following_ratio(8) - 2f64.powf(-0.25)).abs() < 1e-15);
+    }
+}
