@@ -46,8 +46,42 @@ pub enum LadderChoice {
     /// ([`crate::tolerance::WINDOW_RUNGS`] rungs), the round-off floor is
     /// reached, or a rung would exceed [`AUTO_MAX_RUNG_STEPS`].
     Auto,
+    /// The automatic ladder with another ratio or step cap.
+    AutoWith(AutoLadder),
     /// Exactly these rungs.
     Fixed(Ladder),
+}
+
+/// The automatic ladder's settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct AutoLadder {
+    /// Each rung's step over the previous one; `None` for [`auto_ratio`].
+    pub ratio: Option<f64>,
+    /// The largest rung, in steps.
+    pub max_rung_steps: u64,
+}
+
+impl Default for AutoLadder {
+    fn default() -> Self {
+        Self {
+            ratio: None,
+            max_rung_steps: AUTO_MAX_RUNG_STEPS,
+        }
+    }
+}
+
+/// How an order study's ladder ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LadderEnd {
+    /// The window was full and its local orders agreed.
+    Settled,
+    /// The error reached the round-off floor.
+    Floor,
+    /// The next rung would have exceeded the step cap.
+    Cap,
+    /// A fixed ladder ran every rung it was given.
+    Fixed,
 }
 
 /// A geometric ladder `h_k = h0 * ratio^k`, `k = 0..levels`.

@@ -57,6 +57,21 @@ pub fn pre_asymptotic_tolerance(median_order: f64) -> f64 {
     0.1 * median_order.abs().max(1.0)
 }
 
+/// Errors above this fraction of the scene's size cannot be round-off: the
+/// round-off of the catalogue's schemes stays near `1e7 eps`, `2e-9` of the
+/// orbit, even through an `e = 0.99` pericentre passage (leap-frog's distance
+/// from velocity Verlet, the same map, in the report's hard cases). A
+/// "floor" several hundred times higher, or a collapse of the local order at
+/// such an error, is a coarse rung whose error dipped and rose again, which
+/// the window search must not take for the floor.
+pub const ROUND_OFF_CEILING: f64 = 1e-6;
+
+/// At most this many of the finest rungs may be left out of a window as
+/// scattered by round-off: one or two rungs whose local orders jitter by a
+/// few percent must not break a window the coarser rungs form, but more
+/// would be hiding a real change of regime.
+pub const MAX_SCATTERED: usize = 2;
+
 /// The window holds at most this many rungs, the finest asymptotic ones:
 /// eight leave four degrees of freedom to the four-term fit, while keeping
 /// the coarse rungs, whose corrections the fit models least well, out.
@@ -282,15 +297,6 @@ pub const ECCENTRIC_PERIODS: f64 = std::f64::consts::SQRT_2;
 /// second for a scheme whose ladder runs to the cap, and the study runs 40
 /// ladders. The report states where this cap leaves a pericentre unresolved.
 pub const ECCENTRIC_MAX_RUNG_STEPS: u64 = 1 << 17;
-
-/// An eccentric ladder stops at a round-off floor only when its smallest
-/// error is below this fraction of the orbit's size. The round-off of the
-/// order study's schemes stays near `1e7 eps`, `2e-9` of the orbit, even
-/// through an `e = 0.99` passage (leap-frog's distance from velocity Verlet,
-/// the same map, measured in the report); a floor several hundred times
-/// higher is not round-off but a coarse rung whose error dipped and rose
-/// again, which the window search alone would take for a floor.
-pub const ECCENTRIC_ROUND_OFF_CEILING: f64 = 1e-6;
 
 /// Ratio of the eccentric ladders for schemes of order up to 2: `2^(-1/2)`,
 /// twice as many rungs per decade as the main study's halving, so that the

@@ -24,17 +24,16 @@
 //!   velocity Verlet and leap-frog, so its distance from them is round-off
 //!   alone, measured across the first full passage.
 
-use super::fit::OrderFit;
-use super::order::{DropReason, Rung, analyse, local_order, select_window};
+use super::order::{OrderSpec, Rung, analyse, global_order};
 use crate::error::Error;
-use crate::ladder::{AUTO_START, auto_ratio, steps_for};
+use crate::ladder::{AutoLadder, LadderChoice, LadderEnd, steps_for};
 use crate::run::{Outcome, integrate};
 use crate::scene::{KeplerEccentric, Scene};
 use crate::scheme::{Leapfrog, Scheme, StormerVerlet, VELOCITY_VERLET};
 use crate::state::State;
 use crate::tolerance::{
-    self, ECCENTRIC_DRIFT_FRACTION, ECCENTRIC_LOW_ORDER_RATIO, ECCENTRIC_ROUND_OFF_CEILING,
-    ERROR_CEILING, FLOOR_FRACTION, FLOOR_MARGIN, MIN_WINDOW, WINDOW_RUNGS, round_off_energy,
+    self, ECCENTRIC_DRIFT_FRACTION, ECCENTRIC_LOW_ORDER_RATIO, ERROR_CEILING, MIN_WINDOW,
+    round_off_energy,
 };
 use serde::Serialize;
 
@@ -120,18 +119,6 @@ impl OrderStatus {
     }
 }
 
-/// Why a ladder stopped.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum LadderStop {
-    /// The window was full and its local orders agreed.
-    Settled,
-    /// The error reached the round-off floor.
-    Floor,
-    /// The next rung would exceed the step cap.
-    Cap,
-}
-
 /// The order of one scheme on one eccentric orbit.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EccentricOrderRecord {
@@ -146,7 +133,7 @@ pub struct EccentricOrderRecord {
     /// Largest rung allowed, in steps.
     pub max_rung_steps: u64,
     /// Why the ladder stopped.
-    pub stopped: LadderStop,
+    pub stopped: LadderEnd,
     /// The fitted order of the largest error over the trajectory.
     pub measured_order: Option<f64>,
     /// Its interval (see [`tolerance::order_interval`]).
@@ -183,108 +170,28 @@ pub fn eccentric_order<M: Scheme>(
     let orbit = KeplerEccentric::new(e)?;
     let peri = Pericentre::of(&orbit);
     let meta = scheme.meta();
-    let period = orbit.period();
-    let t_end = tolerance::ECCENTRIC_PERIODS * period;
+    let t_end = tolerance::ECCENTRIC_PERIODS * orbit.period();
     let scale = orbit.scale();
-    let ratio = if meta.order <= 2 {
-        ECCENTRIC_LOW_ORDER_RATIO
-    } else {
-        auto_ratio(meta.order)
+    let spec = OrderSpec {
+        t_end: Some(t_end),
+        ladder: LadderChoice::AutoWith(AutoLadder {
+            ratio: (meta.order <= 2).then_some(ECCENTRIC_LOW_ORDER_RATIO),
+            max_rung_steps,
+        }),
     };
-    let mut rungs: Vec<Rung> = Vec::new();
-    let mut stopped = LadderStop::Cap;
-    for k in 0.. {
-        let steps = steps_for(t_end, AUTO_START * period * ratio.powi(k))?;
-        if rungs.last().is_some_and(|r| r.steps >= steps) {
-            continue;
-        }
-        if steps > max_rung_steps {
-            break;
-        }
-        rungs.push(run_rung(scheme, &orbit, t_end, steps));
-        let data: Vec<(f64, Option<f64>)> = rungs.iter().map(|r| (r.h, r.error)).collect();
-        let start = asymptotic_start(&data, scale);
-        let choice = select_window(&data[start..], scale);
-        // a floor only where round-off can be
-        let lowest = data
-            .iter()
-            .filter_map(|d| d.1)
-            .fold(f64::INFINITY, f64::min);
-        if choice.at_floor >= 2 && lowest <= ECCENTRIC_ROUND_OFF_CEILING * scale {
-            stopped = LadderStop::Floor;
-            break;
-        }
-        if choice.window_len() >= WINDOW_RUNGS
-            && choice.spread
-                <= tolerance::settled_tolerance(choice.median_local_order.unwrap_or(1.0))
-        {
-            stopped = LadderStop::Settled;
-            break;
-        }
-    }
-    // A scheme of high order can fall from the ceiling to the round-off
-    // floor within fewer rungs than a window needs. Where the ladder ended
-    // at the floor without a window, it is refined once between the resolved
-    // rungs above the floor (each a few hundred steps at most there).
-    let mut refined = false;
-    if stopped == LadderStop::Floor {
-        let data: Vec<(f64, Option<f64>)> = rungs.iter().map(|r| (r.h, r.error)).collect();
-        if windowed(&data, scale).fit.is_none() {
-            let floor = data
-                .iter()
-                .filter_map(|d| d.1)
-                .fold(f64::INFINITY, f64::min);
-            let above_floor = |r: &Rung| {
-                r.error
-                    .is_some_and(|x| x <= ERROR_CEILING * scale && x > FLOOR_MARGIN * floor)
-            };
-            let mut extra = Vec::new();
-            for pair in rungs.windows(2) {
-                if above_floor(&pair[0]) && above_floor(&pair[1]) {
-                    let steps = steps_for(t_end, (pair[0].h * pair[1].h).sqrt())?;
-                    if steps > pair[0].steps && steps < pair[1].steps {
-                        extra.push(run_rung(scheme, &orbit, t_end, steps));
-                    }
-                }
-            }
-            refined = !extra.is_empty();
-            rungs.extend(extra);
-            rungs.sort_by_key(|r| r.steps);
-        }
-    }
-    for k in 1..rungs.len() {
-        rungs[k].local_order = local_order(
-            (rungs[k - 1].h, rungs[k - 1].error),
-            (rungs[k].h, rungs[k].error),
-        );
-    }
-    let data: Vec<(f64, Option<f64>)> = rungs.iter().map(|r| (r.h, r.error)).collect();
-    let mut analysis = windowed(&data, scale);
-    // Where the finest one or two rungs scatter (the sampling of the
-    // pericentre's error peak and round-off magnified by the passage both
-    // jitter the largest error by a few percent), they can break a window
-    // the coarser rungs form: the ladder would have ended there had it
-    // judged its window without them. They are left out, and the reason says so.
-    let mut left_out = 0;
-    for k in 1..=2 {
-        if analysis.fit.is_some() || data.len() <= k + MIN_WINDOW {
-            break;
-        }
-        let shorter = windowed(&data[..data.len() - k], scale);
-        if shorter.fit.is_some() {
-            analysis = shorter;
-            left_out = k;
-        }
-    }
-    for (rung, reason) in rungs.iter_mut().zip(&analysis.dropped) {
-        rung.dropped = *reason;
-    }
-    let window = analysis.window;
-    if let Some([a, b]) = window {
-        rungs[a..=b].iter_mut().for_each(|r| r.used = true);
-    }
+    let record = global_order(scheme, &orbit, &spec)?;
+    let stopped = record.ladder_end;
+    let refined = record.refined;
+    let window = record.window;
+    let rungs = record.rungs;
+    // finer rungs left out of a window that did not end at the floor were
+    // scattered by round-off (see `select_window`)
+    let left_out = match (window, stopped) {
+        (Some([_, b]), LadderEnd::Cap | LadderEnd::Settled) => rungs.len() - 1 - b,
+        _ => 0,
+    };
     let finals: Vec<(f64, Option<f64>)> = rungs.iter().map(|r| (r.h, r.final_error)).collect();
-    let final_analysis = windowed(&finals, scale);
+    let final_analysis = analyse(&finals, scale);
     let ceiling = ERROR_CEILING * scale;
     let resolved = |r: &Rung| r.error.is_some_and(|x| x <= ceiling);
     let resolved_below = rungs
@@ -293,21 +200,21 @@ pub fn eccentric_order<M: Scheme>(
         .take_while(|r| resolved(r))
         .last()
         .map(|r| r.h);
-    let measured_order = analysis.fit.map(|f| f.order);
+    let measured_order = record.measured_order;
     let theoretical = meta.order as f64;
     let in_tau = |h: f64| short_ratio(peri.time_scale / h);
     let finest = rungs.last().map_or(f64::NAN, |r| r.h);
     let cap_note = match stopped {
-        LadderStop::Cap => format!(
+        LadderEnd::Cap | LadderEnd::Fixed => format!(
             "the ladder stopped at the cap of {max_rung_steps} steps a rung (h = {} = tau_p/{})",
             short(finest),
             in_tau(finest)
         ),
-        LadderStop::Floor if refined => "the ladder reached the round-off floor and was \
+        LadderEnd::Floor if refined => "the ladder reached the round-off floor and was \
                                          refined between its resolved rungs"
             .to_string(),
-        LadderStop::Floor => "the ladder reached the round-off floor".to_string(),
-        LadderStop::Settled => "the window settled".to_string(),
+        LadderEnd::Floor => "the ladder reached the round-off floor".to_string(),
+        LadderEnd::Settled => "the window settled".to_string(),
     };
     let final_note = final_analysis.fit.map_or(String::new(), |f| {
         format!("; the error at t_end alone falls as h^{:.2}", f.order)
@@ -323,7 +230,7 @@ pub fn eccentric_order<M: Scheme>(
             if k > 1 { "" } else { "s" },
         ),
     };
-    let (status, reason) = match (analysis.fit, analysis.ci95, window) {
+    let (status, reason) = match (record.fit, record.ci95, window) {
         (Some(f), Some(ci), Some([a, b])) => {
             let span = format!(
                 "over h = {} .. {} (tau_p/{} .. tau_p/{}){left_note}",
@@ -418,7 +325,7 @@ pub fn eccentric_order<M: Scheme>(
         max_rung_steps,
         stopped,
         measured_order,
-        ci95: analysis.ci95,
+        ci95: record.ci95,
         window,
         final_order: final_analysis.fit.map(|f| f.order),
         final_ci95: final_analysis.ci95,
@@ -476,85 +383,6 @@ pub fn kick_lag(r: &EccentricOrderRecord) -> Option<KickLag> {
     })
 }
 
-/// The first rung the window search may see: the last rung whose error,
-/// below the ceiling yet above round-off level
-/// ([`ECCENTRIC_ROUND_OFF_CEILING`]), stalled (its local order below
-/// [`FLOOR_FRACTION`] of the median local order of the resolved rungs, or
-/// negative), or the first rung. A stall there is the passage not yet
-/// resolved (a mistimed passage can land as close to the exact one at a
-/// coarser step), not round-off; the window search, which reads any
-/// collapse of the local order as the floor, is run on the rungs after it.
-pub fn asymptotic_start(data: &[(f64, Option<f64>)], scale: f64) -> usize {
-    let ceiling = ERROR_CEILING * scale;
-    let resolved = |e: Option<f64>| e.filter(|&x| x <= ceiling);
-    let locals: Vec<(usize, f64)> = (1..data.len())
-        .filter_map(|i| {
-            let (before, error) = (resolved(data[i - 1].1)?, resolved(data[i].1)?);
-            let p = local_order((data[i - 1].0, Some(before)), (data[i].0, Some(error)))?;
-            Some((i, p))
-        })
-        .collect();
-    let mut positive: Vec<f64> = locals.iter().map(|l| l.1).filter(|p| *p > 0.0).collect();
-    if positive.is_empty() {
-        return 0;
-    }
-    positive.sort_by(f64::total_cmp);
-    let median = positive[positive.len() / 2];
-    locals
-        .iter()
-        .rev()
-        .filter(|&&(i, p)| {
-            p < FLOOR_FRACTION * median
-                && data[i]
-                    .1
-                    .is_some_and(|x| x > ECCENTRIC_ROUND_OFF_CEILING * scale)
-        })
-        .map(|&(i, _)| i)
-        .next()
-        .unwrap_or(0)
-}
-
-/// The order analysis of the rungs from [`asymptotic_start`] on, with the
-/// rungs before it marked and the window in the full ladder's indices.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Windowed {
-    /// The fit over the window.
-    pub fit: Option<OrderFit>,
-    /// Its interval.
-    pub ci95: Option<[f64; 2]>,
-    /// First and last rung fitted.
-    pub window: Option<[usize; 2]>,
-    /// Why each rung is out.
-    pub dropped: Vec<Option<DropReason>>,
-}
-
-/// See [`Windowed`].
-pub fn windowed(data: &[(f64, Option<f64>)], scale: f64) -> Windowed {
-    let start = asymptotic_start(data, scale);
-    let a = analyse(&data[start..], scale);
-    let mut dropped: Vec<Option<DropReason>> = data[..start]
-        .iter()
-        .map(|&(_, e)| {
-            Some(match e {
-                None => DropReason::Unstable,
-                Some(x) if x > ERROR_CEILING * scale => DropReason::AboveCeiling,
-                Some(_) => DropReason::PreAsymptotic,
-            })
-        })
-        .collect();
-    dropped.extend(a.choice.dropped.iter().copied());
-    let window = a
-        .fit
-        .and(a.choice.window)
-        .map(|(x, y)| [x + start, y + start]);
-    Windowed {
-        fit: a.fit,
-        ci95: a.ci95,
-        window,
-        dropped,
-    }
-}
-
 /// Three significant digits.
 fn short(x: f64) -> String {
     format!("{x:.2e}")
@@ -570,33 +398,6 @@ pub fn short_ratio(x: f64) -> String {
         format!("{x:.2}")
     } else {
         format!("{x:.2e}")
-    }
-}
-
-/// One rung: the largest phase-space error over every step and the error at
-/// `t_end`, as in the main order study.
-fn run_rung<M: Scheme>(scheme: &M, orbit: &KeplerEccentric, t_end: f64, steps: u64) -> Rung {
-    let h = t_end / steps as f64;
-    let (mut worst, mut last) = (0.0f64, 0.0);
-    let outcome = integrate(scheme, orbit, &orbit.initial(), h, steps, |n, t, s| {
-        let t = if n == steps { t_end } else { t };
-        let exact = orbit
-            .exact(t)
-            .expect("the eccentric orbit has a closed form");
-        last = orbit.phase_distance(s, &exact);
-        worst = worst.max(last);
-    });
-    let done = outcome.completed();
-    let dropped = (!done).then_some(DropReason::Unstable);
-    Rung {
-        h,
-        steps,
-        error: done.then_some(worst),
-        final_error: done.then_some(last),
-        local_order: None,
-        used: false,
-        dropped,
-        outcome,
     }
 }
 

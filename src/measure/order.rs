@@ -11,14 +11,15 @@ use super::Verdict;
 use super::fit::{OrderFit, order_fit};
 use crate::error::Error;
 use crate::ladder::{
-    AUTO_MAX_RUNG_STEPS, AUTO_START, LadderChoice, RungSize, auto_ratio, steps_for,
+    AUTO_START, AutoLadder, LadderChoice, LadderEnd, RungSize, auto_ratio, steps_for,
 };
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::state::State;
 use crate::tolerance::{
-    self, ERROR_CEILING, FLOOR_FRACTION, FLOOR_MARGIN, MIN_WINDOW, REFERENCE_RUNGS, WINDOW_RUNGS,
+    self, ERROR_CEILING, FLOOR_FRACTION, FLOOR_MARGIN, MAX_SCATTERED, MIN_WINDOW, REFERENCE_RUNGS,
+    ROUND_OFF_CEILING, WINDOW_RUNGS,
 };
 use serde::Serialize;
 
@@ -112,6 +113,11 @@ pub struct OrderRecord {
     pub reference: Reference,
     /// How the ladder was chosen.
     pub ladder: LadderChoice,
+    /// How it ended.
+    pub ladder_end: LadderEnd,
+    /// The automatic ladder was refined once between its rungs above the
+    /// round-off floor (see [`global_order`]).
+    pub refined: bool,
     /// The fitted order, when a window was found.
     pub measured_order: Option<f64>,
     /// Its 95% interval, at least [`tolerance::ORDER_RESOLUTION`] either
@@ -170,6 +176,7 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
     let scale = scene.scale();
     let mut rungs: Vec<Rung> = Vec::new();
     let mut samples: Vec<Option<Vec<State<D>>>> = Vec::new();
+    let (mut end, mut refined) = (LadderEnd::Fixed, false);
     let mut push = |rungs: &mut Vec<Rung>, size: RungSize| {
         let (rung, sampled) = run_rung(scheme, scene, t_end, size, reference);
         rungs.push(rung);
@@ -191,16 +198,23 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
                 push(&mut rungs, size);
             }
         }
-        LadderChoice::Auto => {
-            let (h0, ratio) = (AUTO_START * scene.period(), auto_ratio(meta.order));
+        LadderChoice::Auto | LadderChoice::AutoWith(_) => {
+            let settings = match spec.ladder {
+                LadderChoice::AutoWith(settings) => settings,
+                _ => AutoLadder::default(),
+            };
+            let ratio = settings.ratio.unwrap_or_else(|| auto_ratio(meta.order));
+            if !(ratio > 0.0 && ratio < 1.0) {
+                return Err(Error::InvalidParameter {
+                    name: "ratio",
+                    value: ratio,
+                    expected: "a number in (0, 1): each rung's step is ratio times the previous one (0.5 halves)",
+                });
+            }
+            let h0 = AUTO_START * scene.period();
+            end = LadderEnd::Cap;
             for k in 0.. {
                 let steps = steps_for(t_end, h0 * ratio.powi(k))?;
-                if rungs.last().is_some_and(|r| r.steps >= steps) {
-                    continue;
-                }
-                if steps > AUTO_MAX_RUNG_STEPS {
-                    break;
-                }
                 let size = reference.align(
                     RungSize {
                         h: t_end / steps as f64,
@@ -211,14 +225,57 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
                 if rungs.last().is_some_and(|r| r.steps >= size.steps) {
                     continue;
                 }
+                if size.steps > settings.max_rung_steps {
+                    break;
+                }
                 push(&mut rungs, size);
                 let choice = select_window(&errors(&rungs, reference), scale);
                 let settled = choice.window_len() >= WINDOW_RUNGS
                     && choice.spread
                         <= tolerance::settled_tolerance(choice.median_local_order.unwrap_or(1.0));
                 if settled || choice.at_floor >= 2 {
+                    end = if settled {
+                        LadderEnd::Settled
+                    } else {
+                        LadderEnd::Floor
+                    };
                     break;
                 }
+            }
+            // A scheme of high order can fall from the ceiling to the floor
+            // within fewer rungs than a window needs: where the ladder ended
+            // there without a window, it is refined once, at the geometric
+            // middle of every pair of rungs between the two.
+            if end == LadderEnd::Floor
+                && reference == Reference::Exact
+                && select_window(&errors(&rungs, reference), scale)
+                    .window
+                    .is_none()
+            {
+                let floor = rungs
+                    .iter()
+                    .filter_map(|r| r.error)
+                    .fold(f64::INFINITY, f64::min);
+                let between = |r: &Rung| {
+                    r.error
+                        .is_some_and(|e| e <= ERROR_CEILING * scale && e > FLOOR_MARGIN * floor)
+                };
+                let middles: Vec<RungSize> = rungs
+                    .windows(2)
+                    .filter(|w| between(&w[0]) && between(&w[1]))
+                    .filter_map(|w| {
+                        let steps = steps_for(t_end, (w[0].h * w[1].h).sqrt()).ok()?;
+                        (steps > w[0].steps && steps < w[1].steps).then_some(RungSize {
+                            h: t_end / steps as f64,
+                            steps,
+                        })
+                    })
+                    .collect();
+                refined = !middles.is_empty();
+                for size in middles {
+                    push(&mut rungs, size);
+                }
+                rungs.sort_by_key(|r| r.steps);
             }
         }
     }
@@ -267,6 +324,8 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         t_end,
         reference,
         ladder: spec.ladder,
+        ladder_end: end,
+        refined,
         measured_order: fit.map(|f| f.order),
         ci95,
         fit,
@@ -544,7 +603,7 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
         spread: f64::NAN,
     };
     // the longest run of candidates; ties go to the finer run
-    let Some((a, mut b)) = longest_run(&dropped) else {
+    let Some((mut a, mut b)) = longest_run(&dropped) else {
         return none(dropped);
     };
     for (i, d) in dropped.iter_mut().enumerate() {
@@ -560,10 +619,29 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
         local_order((data[i - 1].0, data[i - 1].1), (data[i].0, data[i].1)).unwrap_or(f64::NAN)
     };
     let error = |i: usize| data[i].1.unwrap_or(f64::NAN);
-    // 1. The round-off floor. Where the error stops falling (its minimum is
-    //    not the finest rung), every finer rung is on the floor; so is every
-    //    rung from a collapse of the local order on; and so is every rung
-    //    whose error is within FLOOR_MARGIN of the floor's.
+    let round_off_level = ROUND_OFF_CEILING * scale;
+    // 0. A stall: a rung coarser than the smallest error whose local order
+    //    collapses while its error is far above any round-off. That is no
+    //    floor but a pre-asymptotic accident (a coarse step whose mistimed
+    //    pericentre passage lands close to the exact one); the search starts
+    //    after the last one.
+    let smallest = (a..=b).min_by(|&i, &j| error(i).total_cmp(&error(j))).unwrap_or(b);
+    let typical = median_of((a + 1..=smallest).map(local).filter(|p| *p > 0.0).collect());
+    if typical.is_finite()
+        && let Some(stall) = (a + 1..=smallest).rev().find(|&i| {
+            (local(i).is_nan() || local(i) < FLOOR_FRACTION * typical) && error(i) > round_off_level
+        })
+    {
+        for d in &mut dropped[a..stall] {
+            *d = Some(DropReason::PreAsymptotic);
+        }
+        a = stall;
+    }
+    // 1. The round-off floor, where errors are small enough to be round-off:
+    //    where the error stops falling (its minimum is not the finest rung),
+    //    every finer rung is on the floor; so is every rung from a collapse
+    //    of the local order on; and so is every rung whose error is within
+    //    FLOOR_MARGIN of the floor's.
     let lowest = (a..=b)
         .min_by(|&i, &j| error(i).total_cmp(&error(j)))
         .unwrap_or(b);
@@ -577,7 +655,7 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
     let collapse =
         (a + 1..=lowest).find(|&i| local(i).is_nan() || local(i) < FLOOR_FRACTION * median_all);
     let mut at_floor = 0;
-    if lowest < b || collapse.is_some() {
+    if (lowest < b || collapse.is_some()) && error(lowest) <= round_off_level {
         let floor = error(lowest);
         let mut last = collapse.map_or(lowest, |c| c - 1);
         while last > a && error(last) < FLOOR_MARGIN * floor {
@@ -589,10 +667,45 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
         }
         b = last;
     }
-    // 2. The reference order: the median local order of the finest rungs
-    //    left, the most asymptotic ones.
-    let median = median_of((a + 1..=b).rev().take(REFERENCE_RUNGS).map(local).collect());
-    if median.is_nan() || median <= 0.0 {
+    // 2. The window: the finest rungs (at most WINDOW_RUNGS) whose local
+    //    orders all stay near the reference, the median local order of the
+    //    finest REFERENCE_RUNGS (the most asymptotic). Where the finest one or
+    //    two rungs scatter (round-off magnified by a sharp feature of the
+    //    flow jitters the largest error by a few percent) and break a window
+    //    the coarser rungs form, they are left out as touched by round-off.
+    //    Coarser rungs that stray are pre-asymptotic; coarser ones that do
+    //    not are simply not needed.
+    let mut best: Option<(usize, usize, f64)> = None;
+    for skip in 0..=MAX_SCATTERED {
+        let Some(end) = b.checked_sub(skip).filter(|&e| e > a) else {
+            break;
+        };
+        let median = median_of(
+            (a + 1..=end)
+                .rev()
+                .take(REFERENCE_RUNGS)
+                .map(local)
+                .collect(),
+        );
+        if median.is_nan() || median <= 0.0 {
+            continue;
+        }
+        let tolerance = tolerance::plateau_tolerance(median);
+        let mut first = end;
+        while first > a
+            && end - first + 1 < WINDOW_RUNGS
+            && (local(first) - median).abs() <= tolerance
+        {
+            first -= 1;
+        }
+        if skip == 0 || end + 1 - first >= MIN_WINDOW {
+            best = Some((first, end, median));
+        }
+        if end + 1 - first >= MIN_WINDOW {
+            break;
+        }
+    }
+    let Some((first, end, median)) = best else {
         for d in &mut dropped[a..=b] {
             *d = Some(DropReason::PreAsymptotic);
         }
@@ -600,15 +713,12 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
             at_floor,
             ..none(dropped)
         };
+    };
+    for d in &mut dropped[end + 1..=b] {
+        *d = Some(DropReason::RoundOff);
     }
-    // 3. The window: the finest rungs (at most WINDOW_RUNGS) whose local
-    //    orders all stay near the reference. Coarser rungs that stray are
-    //    pre-asymptotic; coarser ones that do not are simply not needed.
+    let b = end;
     let tolerance = tolerance::plateau_tolerance(median);
-    let mut first = b;
-    while first > a && b - first + 1 < WINDOW_RUNGS && (local(first) - median).abs() <= tolerance {
-        first -= 1;
-    }
     for (i, d) in dropped.iter_mut().enumerate().take(first).skip(a) {
         let strays = (local(i + 1) - median).abs() > tolerance;
         *d = Some(if strays {

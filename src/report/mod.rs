@@ -508,7 +508,7 @@ pub fn order_table(records: &[&OrderRecord]) -> String {
 /// One ladder, rung by rung.
 pub fn rung_table(r: &OrderRecord) -> String {
     let ladder = match r.ladder {
-        LadderChoice::Auto => "automatic ladder".to_string(),
+        LadderChoice::Auto | LadderChoice::AutoWith(_) => "automatic ladder".to_string(),
         LadderChoice::Fixed(l) => {
             format!("h0 = {}, ratio = {}, {} levels", l.h0, l.ratio, l.levels)
         }
