@@ -14,6 +14,9 @@
 //!   [`scene::Scene`] trait to bring your own.
 //! - [`measure`]: the studies; [`measure::order::global_order`] measures the
 //!   global order with a 95% interval over an automatically chosen window.
+//! - [`work`]: speed against error, the force evaluations and the time each
+//!   scheme needs to reach target errors, beside the `ode_solvers` peer;
+//!   [`measure::cost`] times a step against a hand-written floor.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
 //!
 //! ```
@@ -41,6 +44,7 @@ pub mod scheme;
 pub mod state;
 pub mod suite;
 pub mod tolerance;
+pub mod work;
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

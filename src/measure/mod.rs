@@ -1,15 +1,18 @@
 //! Studies: each turns runs of one scheme on one scene into a record, plain
 //! serde data that feeds the CLI's `--json`, the snapshots and the report.
 
+pub mod cost;
 pub mod energy;
 pub mod fit;
 pub mod order;
+pub mod peer;
 pub mod phase;
 pub mod reverse;
 pub mod scene_check;
 pub mod stability;
 pub mod symplectic;
 pub mod tangent;
+pub mod work;
 
 use serde::Serialize;
 

@@ -242,7 +242,7 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
 }
 
 /// Runs one rung and measures its global and final errors.
-fn run_rung<M: Scheme, S: Scene<D>, const D: usize>(
+pub fn run_rung<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
     t_end: f64,

@@ -12,4 +12,5 @@ mod order_conditions;
 mod properties;
 mod report;
 mod snapshots;
+mod speed;
 mod stability;
