@@ -44,6 +44,13 @@ pub struct SuiteRecords {
     pub stability: Vec<StabilityRecord>,
     /// The check of every scene.
     pub scenes: Vec<SceneCheck>,
+    /// The work-precision study, one record per scene.
+    pub work: Vec<crate::work::WorkRecord>,
+    /// Its wall times, one per scene (machine-dependent).
+    pub work_timing: Vec<crate::work::WorkTiming>,
+    /// Every scheme's cost of a step against the hand-written floor
+    /// (machine-dependent).
+    pub speed: crate::measure::cost::SpeedRecord,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -147,14 +154,48 @@ pub fn run_suite(
         .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
         .unzip();
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
+    let (work, work_timing, speed) = speed_against_error(&cases, threads);
     Ok(SuiteRecords {
         cases,
         phase,
         stability,
         scenes,
+        work,
+        work_timing,
+        speed,
         total: start.elapsed(),
         threads,
     })
+}
+
+/// The work-precision study on every scene from the cases' order records,
+/// then the cost of a step against the floor.
+fn speed_against_error(
+    cases: &[CaseRecords],
+    threads: usize,
+) -> (
+    Vec<crate::work::WorkRecord>,
+    Vec<crate::work::WorkTiming>,
+    crate::measure::cost::SpeedRecord,
+) {
+    let scenes = AnyScene::all();
+    let orders: Vec<Vec<&OrderRecord>> = scenes
+        .iter()
+        .map(|s| {
+            let id = s.meta().id;
+            cases
+                .iter()
+                .map(|c| &c.order)
+                .filter(|o| o.scene == id)
+                .collect()
+        })
+        .collect();
+    let (work, timing) = crate::work::work_study(&scenes, &orders, threads);
+    let speed = crate::measure::cost::speed(
+        crate::measure::cost::SPEED_STEPS,
+        crate::measure::cost::SPEED_REPEATS,
+    );
+    (work, timing, speed)
 }
 
 /// The studies of a scheme alone, on the oscillator.

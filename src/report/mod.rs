@@ -2,9 +2,11 @@
 //! comes from a record, and the same records feed the CLI and the snapshots.
 
 mod markdown;
+mod work;
 
 pub use markdown::Table;
 use markdown::{opt, order, sci, yes_no};
+pub use work::{cheapest_table, speed_table, time_to_target_table, work_scene, work_table};
 
 use crate::error::Error;
 use crate::ladder::LadderChoice;
@@ -30,6 +32,7 @@ pub fn render(records: &SuiteRecords) -> String {
     out.push_str(MACHINE_MARKER);
     out.push('\n');
     out.push_str(&timings(records));
+    out.push_str(&work::timing_section(&records.speed, &records.work_timing));
     out
 }
 
@@ -88,6 +91,7 @@ pub fn deterministic(records: &SuiteRecords) -> String {
          stable for every step scanned.\n\n",
     );
     out.push_str(&stability_table(&records.stability));
+    out.push_str(&work::deterministic_section(&records.work));
     out.push_str("\n## Error against step size\n\n");
     out.push_str(
         "Every rung of every ladder: `error` is the largest phase-space error over the \

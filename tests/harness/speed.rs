@@ -4,11 +4,12 @@
 //! assertion here depends on how fast the machine is.
 
 use stepladder::measure::cost::{floor_verlet_kepler, run_steps, speed, time_run};
-use stepladder::measure::peer::run_peer_any;
+use stepladder::measure::peer::{peer_targets, run_peer_any};
 use stepladder::measure::work::{
-    Reach, TARGETS, TargetCost, cheapest, cost_to_reach, start_evaluations,
+    Reach, TARGETS, TargetCost, WorkPoint, cheapest, cost_to_reach, start_evaluations,
 };
-use stepladder::scene::{Counted, Harmonic, KeplerCircular, Scene};
+use stepladder::run::integrate;
+use stepladder::scene::{AnyScene, Counted, Harmonic, KeplerCircular, Scene, SceneVisitor};
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
 use stepladder::work::cheapest_per_target;
 
@@ -121,6 +122,120 @@ fn speed_record_is_consistent_with_counted_evaluations() {
             "{}",
             s.id
         );
+    }
+}
+
+/// The work study's points on every scene: the order study's rungs first,
+/// unchanged, then its ladder continued; every point's evaluations are what
+/// a counting scene sees when the rung is run again.
+struct PointsAreCounted<'a>(&'a stepladder::work::WorkRecord, &'a AnyScene);
+impl SchemeVisitor for PointsAreCounted<'_> {
+    type Output = ();
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) {
+        struct On<'b, M: 'static>(&'static M, &'b [WorkPoint]);
+        impl<M: Scheme + Sync + 'static> SceneVisitor for On<'_, M> {
+            type Output = ();
+            fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(self, scene: &S) {
+                // the cheap rungs: coarse ones, and those that blew up early
+                for p in self.1.iter().filter(|p| p.steps <= 20_000) {
+                    let counted = Counted::new(scene.clone());
+                    let outcome = integrate(
+                        self.0,
+                        &counted,
+                        &counted.initial(),
+                        p.h,
+                        p.steps,
+                        |_, _, _| {},
+                    );
+                    assert_eq!(
+                        p.evaluations,
+                        counted.evaluations(),
+                        "{} on {} at {} steps ({outcome})",
+                        self.0.meta().id,
+                        scene.meta().id,
+                        p.steps
+                    );
+                }
+            }
+        }
+        let work = self
+            .0
+            .schemes
+            .iter()
+            .find(|w| w.scheme == scheme.meta().id)
+            .expect("every scheme has a work record");
+        self.1.visit(On(scheme, &work.global));
+        self.1.visit(On(scheme, &work.energy));
+    }
+}
+
+#[test]
+fn work_points_reuse_the_order_rungs_and_count_their_evaluations() {
+    let suite = super::common::suite();
+    assert_eq!(suite.work.len(), AnyScene::all().len());
+    for (record, scene) in suite.work.iter().zip(AnyScene::all()) {
+        assert_eq!(record.scene, scene.meta().id);
+        for id in scheme_ids() {
+            visit_scheme(id, PointsAreCounted(record, &scene)).unwrap();
+        }
+        for w in &record.schemes {
+            let order = suite
+                .order()
+                .into_iter()
+                .find(|o| o.scene == record.scene && o.scheme == w.scheme)
+                .unwrap();
+            assert!(w.global.len() >= order.rungs.len(), "{}", w.scheme);
+            for (p, r) in w.global.iter().zip(&order.rungs) {
+                assert_eq!(
+                    (p.h, p.steps, p.error),
+                    (r.h, r.steps, r.error),
+                    "{}",
+                    w.scheme
+                );
+            }
+            // the continuation only ever refines, and only while the
+            // smallest target has not been reached
+            for pair in w.global.windows(2) {
+                assert!(pair[1].steps > pair[0].steps, "{}", w.scheme);
+            }
+            let smallest = TARGETS.iter().copied().fold(f64::INFINITY, f64::min);
+            let extended = &w.global[order.rungs.len().saturating_sub(1)..];
+            for p in &extended[..extended.len().saturating_sub(1)] {
+                assert!(p.error.is_some_and(|e| e > smallest), "{}", w.scheme);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_cheapest_scheme_is_no_dearer_than_any_other() {
+    for record in &super::common::suite().work {
+        for (i, c) in record.cheapest_global.iter().enumerate() {
+            for w in &record.schemes {
+                if let (Some(best), Some(other)) =
+                    (c.reach.cost(), w.global_targets[i].reach.cost())
+                {
+                    assert!(
+                        best <= other,
+                        "{} at {}: {}",
+                        record.scene,
+                        c.target,
+                        w.scheme
+                    );
+                }
+            }
+            let reached = record
+                .schemes
+                .iter()
+                .any(|w| w.global_targets[i].reach.cost().is_some());
+            assert_eq!(
+                c.scheme.is_some(),
+                reached,
+                "{} at {}",
+                record.scene,
+                c.target
+            );
+        }
     }
 }
 
@@ -270,4 +385,37 @@ fn the_peer_is_counted_and_judged_like_the_catalogue() {
         }
     }
     assert!(run_peer_any(&Three, 1.0, 1e-6).is_none());
+}
+
+#[test]
+fn the_peer_targets_follow_its_points() {
+    for record in &super::common::suite().work {
+        let peer = record
+            .peer
+            .as_ref()
+            .expect("every built-in scene has a peer");
+        assert_eq!(peer.global.len(), peer.energy.len());
+        assert_eq!(peer_targets(&peer.global), peer.global_targets);
+        for p in &peer.global {
+            assert!(p.evaluations >= 12 * p.accepted, "{}", record.scene);
+        }
+    }
+}
+
+/// Force evaluations go in the report's deterministic part, times only
+/// below the machine-dependent marker.
+#[test]
+fn the_report_keeps_times_below_the_marker() {
+    use stepladder::report::{MACHINE_MARKER, deterministic, render};
+    let suite = super::common::suite();
+    let text = render(suite);
+    let (fixed, machine) = text.split_once(MACHINE_MARKER).unwrap();
+    assert_eq!(fixed, deterministic(suite));
+    assert!(fixed.contains("## Speed against error"));
+    assert!(fixed.contains("### Cheapest scheme per target"));
+    assert!(!fixed.contains("ns/step") && !fixed.contains(" us |"));
+    assert!(machine.contains("### Cost of a step") && machine.contains("### Time to target"));
+    for id in scheme_ids() {
+        assert!(machine.contains(&format!("| `{id}` |")), "{id}");
+    }
 }
