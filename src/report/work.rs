@@ -63,8 +63,9 @@ pub fn method() -> String {
          (round-off), or a run would take more than {ENERGY_MAX_STEPS} steps.\n\n\
          The cost of a target is interpolated on log-log axes between the two measured \
          runs that bracket it, never extrapolated: `<=` marks a target already met by the \
-         cheapest run measured (or by the first stable one), whose cost is then an upper \
-         bound, and `not reached` a target no run met. The peer is the `ode_solvers` \
+         cheapest run measured (or by the first run after one that blew up), whose cost is \
+         then an upper bound, and `not reached` a target no run met. The cheapest scheme \
+         is the one with the fewest evaluations, an upper bound counting at its value. The peer is the `ode_solvers` \
          crate's adaptive `Dop853` (Dormand-Prince 8(5,3)) on `y = (q, v)`, at relative \
          and absolute tolerances {} to {}, one a decade, judged the same way: its error \
          at every step it takes against the exact solution, its force evaluations from its \
