@@ -78,6 +78,12 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Time a step of every scheme on the circular orbit against a
+    /// hand-written velocity Verlet loop on plain f64 (machine-dependent).
+    Speed(SpeedArgs),
+    /// Error against cost on one scene: force evaluations and wall time each
+    /// scheme (and the ode_solvers Dop853 peer) needs to reach target errors.
+    Work(WorkArgs),
 }
 
 /// The scheme and scene every single-case study takes.
@@ -177,6 +183,19 @@ struct RoundoffArgs {
 }
 
 #[derive(Debug, Args)]
+struct SpeedArgs {
+    /// Timed runs per scheme; the fastest is kept.
+    #[arg(long, default_value_t = crate::measure::cost::SPEED_REPEATS)]
+    repeats: usize,
+    /// Steps per timed run.
+    #[arg(long, default_value_t = crate::measure::cost::SPEED_STEPS)]
+    steps: u64,
+    /// Print the record as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Debug, Args)]
 struct LongrunArgs {
     /// Scheme id: a Verlet form or its compensated variant (default: all six).
     #[arg(long)]
@@ -189,6 +208,20 @@ struct LongrunArgs {
     #[arg(long)]
     steps: Option<u64>,
     /// Print the records as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Debug, Args)]
+struct WorkArgs {
+    /// Scene id (see `stepladder list`), optionally with parameters:
+    /// `kepler-eccentric:e=0.9`.
+    #[arg(long)]
+    scene: String,
+    /// Worker threads (default: every core); results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Print the record (and the timings) as JSON.
     #[arg(long)]
     json: bool,
 }
@@ -277,6 +310,8 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             }
             Ok(ExitCode::SUCCESS)
         }
+        Command::Speed(a) => speed(&a),
+        Command::Work(a) => work(&a),
         Command::Energy(a) => {
             let r = a.case.case()?.energy(&EnergySpec {
                 h: a.h,
@@ -572,6 +607,35 @@ fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {
     Ok(ExitCode::SUCCESS)
 }
 
+fn speed(args: &SpeedArgs) -> Result<ExitCode, Error> {
+    if args.repeats == 0 {
+        return Err(Error::InvalidParameter {
+            name: "repeats",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    if args.steps == 0 {
+        return Err(Error::InvalidParameter {
+            name: "steps",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    let runs = args.repeats as u64 * (crate::scheme::scheme_ids().len() as u64 + 1);
+    crate::ladder::check_cost(args.steps.saturating_mul(runs))?;
+    let record = crate::measure::cost::speed(args.steps, args.repeats);
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&record).expect("plain data serialises")
+        );
+    } else {
+        print!("{}", report::speed_table(&record));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
     use crate::measure::longrun::{LongrunSpec, longrun_of};
     let scene = AnyScene::parse(&args.scene)?;
@@ -597,6 +661,39 @@ fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
         );
     } else {
         print!("{}", report::roundoff::longrun_table(&records));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The `work` command's JSON: the deterministic record and the timings.
+#[derive(Serialize)]
+struct WorkOutput {
+    #[serde(flatten)]
+    record: crate::work::WorkRecord,
+    timing: crate::work::WorkTiming,
+}
+
+fn work(args: &WorkArgs) -> Result<ExitCode, Error> {
+    if args.threads == Some(0) {
+        return Err(Error::InvalidParameter {
+            name: "threads",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    let scene = AnyScene::parse(&args.scene)?;
+    let (record, timing) =
+        crate::work::work_on(&scene, args.threads.unwrap_or_else(default_threads))?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&WorkOutput { record, timing })
+                .expect("plain data serialises")
+        );
+    } else {
+        print!("{}", report::work_scene(&record));
+        println!();
+        print!("{}", report::time_to_target_table(&timing));
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -23,6 +23,9 @@
 //!   it tells an orbit just below the barrier from one just above.
 //! - [`guard`]: one-line assertions of a scheme's claims for a downstream
 //!   crate's tests, with the deciding figures in the failure message.
+//! - [`work`]: speed against error, the force evaluations and the time each
+//!   scheme needs to reach target errors, beside the `ode_solvers` peer;
+//!   [`measure::cost`] times a step against a hand-written floor.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
 //!
 //! ```
@@ -53,6 +56,7 @@ pub mod scheme;
 pub mod state;
 pub mod suite;
 pub mod tolerance;
+pub mod work;
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -53,6 +53,13 @@ pub struct SuiteRecords {
     pub roundoff: crate::roundoff_suite::RoundoffRecords,
     /// The hard cases: eccentric orbits, the separatrix, escape or trapped.
     pub hard: HardCases,
+    /// The work-precision study, one record per scene.
+    pub work: Vec<crate::work::WorkRecord>,
+    /// Its wall times, one per scene (machine-dependent).
+    pub work_timing: Vec<crate::work::WorkTiming>,
+    /// Every scheme's cost of a step against the hand-written floor
+    /// (machine-dependent).
+    pub speed: crate::measure::cost::SpeedRecord,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -167,6 +174,7 @@ pub fn run_suite(
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
     let hard = run_hard_jobs(hard_jobs(), threads)?;
     let roundoff = crate::roundoff_suite::run_roundoff_suite(threads)?;
+    let (work, work_timing, speed) = speed_against_error(&cases, threads);
     Ok(SuiteRecords {
         cases,
         phase,
@@ -175,9 +183,42 @@ pub fn run_suite(
         earth_sun: earth_sun_experiments(),
         roundoff,
         hard,
+        work,
+        work_timing,
+        speed,
         total: start.elapsed(),
         threads,
     })
+}
+
+/// The work-precision study on every scene from the cases' order records,
+/// then the cost of a step against the floor.
+fn speed_against_error(
+    cases: &[CaseRecords],
+    threads: usize,
+) -> (
+    Vec<crate::work::WorkRecord>,
+    Vec<crate::work::WorkTiming>,
+    crate::measure::cost::SpeedRecord,
+) {
+    let scenes = AnyScene::all();
+    let orders: Vec<Vec<&OrderRecord>> = scenes
+        .iter()
+        .map(|s| {
+            let id = s.meta().id;
+            cases
+                .iter()
+                .map(|c| &c.order)
+                .filter(|o| o.scene == id)
+                .collect()
+        })
+        .collect();
+    let (work, timing) = crate::work::work_study(&scenes, &orders, threads);
+    let speed = crate::measure::cost::speed(
+        crate::measure::cost::SPEED_STEPS,
+        crate::measure::cost::SPEED_REPEATS,
+    );
+    (work, timing, speed)
 }
 
 /// The studies of a scheme alone, on the oscillator.

@@ -1,6 +1,7 @@
 //! Studies: each turns runs of one scheme on one scene into a record, plain
 //! serde data that feeds the CLI's `--json`, the snapshots and the report.
 
+pub mod cost;
 pub mod eccentric;
 pub mod energy;
 pub mod escape;
@@ -8,6 +9,7 @@ pub mod fit;
 pub mod following;
 pub mod longrun;
 pub mod order;
+pub mod peer;
 pub mod phase;
 pub mod reverse;
 pub mod roundoff;
@@ -16,6 +18,7 @@ pub mod stability;
 pub mod symplectic;
 pub mod tangent;
 pub mod trajectory;
+pub mod work;
 
 use serde::Serialize;
 

@@ -375,7 +375,7 @@ impl Reference {
 
 /// Runs one rung: against the exact solution, its global and final errors;
 /// without one, its states at the [`SAMPLES`] comparison times.
-fn run_rung<M: Scheme, S: Scene<D>, const D: usize>(
+pub fn run_rung<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
     t_end: f64,
@@ -625,7 +625,9 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
     //    floor but a pre-asymptotic accident (a coarse step whose mistimed
     //    pericentre passage lands close to the exact one); the search starts
     //    after the last one.
-    let smallest = (a..=b).min_by(|&i, &j| error(i).total_cmp(&error(j))).unwrap_or(b);
+    let smallest = (a..=b)
+        .min_by(|&i, &j| error(i).total_cmp(&error(j)))
+        .unwrap_or(b);
     let typical = median_of((a + 1..=smallest).map(local).filter(|p| *p > 0.0).collect());
     if typical.is_finite()
         && let Some(stall) = (a + 1..=smallest).rev().find(|&i| {

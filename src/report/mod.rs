@@ -5,6 +5,7 @@ pub mod figures;
 mod hard;
 mod markdown;
 pub mod roundoff;
+mod work;
 
 pub use hard::{
     eccentric_energy_grid, eccentric_order_table, escape_table, following_rungs, following_table,
@@ -12,6 +13,7 @@ pub use hard::{
 };
 pub use markdown::Table;
 use markdown::{opt, order, sci, yes_no};
+pub use work::{cheapest_table, speed_table, time_to_target_table, work_scene, work_table};
 
 use crate::error::Error;
 use crate::ladder::LadderChoice;
@@ -37,6 +39,7 @@ pub fn render(records: &SuiteRecords) -> String {
     out.push_str(MACHINE_MARKER);
     out.push('\n');
     out.push_str(&timings(records));
+    out.push_str(&work::timing_section(&records.speed, &records.work_timing));
     out
 }
 
@@ -113,7 +116,8 @@ pub fn deterministic(records: &SuiteRecords) -> String {
     out.push_str(&earth_sun(&records.earth_sun));
     out.push('\n');
     out.push_str(&hard_cases_section(&records.hard));
-    out.push_str("## Error against step size\n\n");
+    out.push_str(&work::deterministic_section(&records.work));
+    out.push_str("\n## Error against step size\n\n");
     out.push_str(
         "Every rung of every ladder: `error` is the largest phase-space error over the \
          trajectory, `final` the error at `t_end`, `local` the local order against the \

@@ -251,3 +251,89 @@ fn json_records_are_identical_across_runs() {
         assert!(a.stdout == b.stdout, "{args:?} printed different records");
     }
 }
+
+#[test]
+fn speed_json_has_every_scheme_against_the_floor() {
+    let v = json(&["speed", "--json", "--repeats", "1", "--steps", "200"]);
+    assert_eq!(v["scene"], "kepler-circular");
+    assert_eq!(v["steps"], 200);
+    assert!(v["floor_ns_per_step"].as_f64().unwrap() > 0.0);
+    let ids: Vec<&str> = v["schemes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            assert!(s["ns_per_step"].as_f64().unwrap() > 0.0, "{s}");
+            assert!(s["ratio_to_floor"].as_f64().unwrap() > 0.0, "{s}");
+            assert!(s["ratio_per_evaluation"].as_f64().unwrap() > 0.0, "{s}");
+            assert!(
+                s["force_evaluations_per_step"].as_f64().unwrap() >= 1.0,
+                "{s}"
+            );
+            s["id"].as_str().unwrap()
+        })
+        .collect();
+    assert_eq!(ids, stepladder::scheme::scheme_ids());
+    let text = run(&["speed", "--repeats", "1", "--steps", "100"]);
+    assert!(text.status.success());
+    assert!(String::from_utf8_lossy(&text.stdout).contains("velocity-verlet"));
+}
+
+#[test]
+fn work_json_has_targets_schemes_peer_and_timings() {
+    let v = json(&["work", "--scene", "harmonic", "--json"]);
+    assert_eq!(v["scene"], "harmonic");
+    let targets: Vec<f64> = v["targets"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_f64().unwrap())
+        .collect();
+    assert_eq!(targets, stepladder::measure::work::TARGETS);
+    let schemes = v["schemes"].as_array().unwrap();
+    assert_eq!(schemes.len(), stepladder::scheme::scheme_ids().len());
+    let kinds = ["interpolated", "at-most", "not-reached"];
+    for s in schemes {
+        for key in ["global_targets", "energy_targets"] {
+            let t = s[key].as_array().unwrap();
+            assert_eq!(t.len(), targets.len(), "{key}");
+            for c in t {
+                assert!(kinds.contains(&c["reach"]["kind"].as_str().unwrap()), "{c}");
+            }
+        }
+        for p in s["global"].as_array().unwrap() {
+            assert!(p["evaluations"].as_u64().unwrap() >= p["steps"].as_u64().unwrap());
+        }
+    }
+    let peer = &v["peer"];
+    assert_eq!(peer["peer"], "ode_solvers Dop853");
+    assert!(!peer["global"].as_array().unwrap().is_empty());
+    for key in ["cheapest_global", "cheapest_energy"] {
+        assert_eq!(v[key].as_array().unwrap().len(), targets.len());
+    }
+    let timing = &v["timing"];
+    assert_eq!(timing["schemes"].as_array().unwrap().len(), schemes.len());
+    assert_eq!(
+        timing["fastest_global"].as_array().unwrap().len(),
+        targets.len()
+    );
+}
+
+#[test]
+fn speed_and_work_refuse_bad_input() {
+    refused(
+        &["work", "--scene", "mars"],
+        "valid scenes: harmonic, kepler-circular",
+    );
+    refused(&["work", "--scene", "harmonic:w0=0"], "w0 = 0 is invalid");
+    refused(&["work", "--scene", "harmonic:spring=2"], "its parameters");
+    refused(&["work"], "--scene");
+    refused(
+        &["work", "--scene", "harmonic", "--threads", "0"],
+        "threads = 0 is invalid",
+    );
+    refused(&["speed", "--repeats", "0"], "repeats = 0 is invalid");
+    refused(&["speed", "--steps", "0"], "steps = 0 is invalid");
+    refused(&["speed", "--steps", "-5"], "'-5'");
+    refused(&["speed", "--steps", "100000000000"], "refusing a run of");
+}

@@ -16,4 +16,5 @@ mod properties;
 mod report;
 mod roundoff;
 mod snapshots;
+mod speed;
 mod stability;
