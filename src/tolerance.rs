@@ -45,6 +45,16 @@ pub const FLOOR_FRACTION: f64 = 0.25;
 /// not model round-off.
 pub const FLOOR_MARGIN: f64 = 100.0;
 
+/// [`FLOOR_MARGIN`] for a ladder whose local orders are near `order`.
+/// Round-off that is a fraction `f` of a rung's error lowers its local order
+/// by about `(p + 1) f` (the error falls as `h^p` while round-off grows as
+/// `1/h`): 3% at second order under the plain margin, but 9% at eighth, which
+/// biases the fitted order by more than [`ORDER_RESOLUTION`]. Above second
+/// order the margin grows with `p + 1` to keep that bias at 3%.
+pub fn floor_margin(order: f64) -> f64 {
+    FLOOR_MARGIN * (order.max(2.0) + 1.0) / 3.0
+}
+
 /// The window's reference order is the median local order of this many of
 /// its finest rungs: the most asymptotic ones, and a median of three is not
 /// moved by one erratic rung.

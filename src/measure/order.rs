@@ -578,7 +578,7 @@ impl WindowChoice {
 ///    is kept;
 /// 2. if the error stops falling (or the local order collapses below
 ///    [`FLOOR_FRACTION`] of the median), the ladder has reached the round-off
-///    floor: rungs past it, and rungs within [`FLOOR_MARGIN`] of the floor's
+///    floor: rungs past it, and rungs within [`tolerance::floor_margin`] of the floor's
 ///    error, are out;
 /// 3. the reference order is the median local order of the
 ///    [`REFERENCE_RUNGS`] finest rungs left (the most asymptotic); the
@@ -643,7 +643,7 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
     //    where the error stops falling (its minimum is not the finest rung),
     //    every finer rung is on the floor; so is every rung from a collapse
     //    of the local order on; and so is every rung whose error is within
-    //    FLOOR_MARGIN of the floor's.
+    //    the floor margin (FLOOR_MARGIN, more at high order) of the floor's.
     let lowest = (a..=b)
         .min_by(|&i, &j| error(i).total_cmp(&error(j)))
         .unwrap_or(b);
@@ -660,7 +660,7 @@ pub fn select_window(data: &[(f64, Option<f64>)], scale: f64) -> WindowChoice {
     if (lowest < b || collapse.is_some()) && error(lowest) <= round_off_level {
         let floor = error(lowest);
         let mut last = collapse.map_or(lowest, |c| c - 1);
-        while last > a && error(last) < FLOOR_MARGIN * floor {
+        while last > a && error(last) < tolerance::floor_margin(median_all) * floor {
             last -= 1;
         }
         at_floor = b - last;
