@@ -14,9 +14,8 @@ use crate::measure::work::{
 };
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
+use crate::suite::parallel_map;
 use serde::Serialize;
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
 /// Steps of one timed run of a scheme on a scene, for its time per force
@@ -105,36 +104,6 @@ pub struct WorkTiming {
     pub fastest_global: Vec<Fastest>,
     /// The fastest scheme per target energy error.
     pub fastest_energy: Vec<Fastest>,
-}
-
-/// Runs `f` on every item on `threads` threads; results in item order.
-fn parallel_map<T: Sync, R: Send>(
-    items: &[T],
-    threads: usize,
-    f: impl Fn(&T) -> R + Sync,
-) -> Vec<R> {
-    let slots: Vec<Mutex<Option<R>>> = items.iter().map(|_| Mutex::new(None)).collect();
-    let next = AtomicUsize::new(0);
-    std::thread::scope(|scope| {
-        for _ in 0..threads.clamp(1, items.len().max(1)) {
-            scope.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(item) = items.get(i) else { break };
-                    let r = f(item);
-                    *slots[i].lock().expect("no panics while holding the lock") = Some(r);
-                }
-            });
-        }
-    });
-    slots
-        .into_iter()
-        .map(|s| {
-            s.into_inner()
-                .expect("no poisoned lock")
-                .expect("every item ran")
-        })
-        .collect()
 }
 
 /// One piece of the study: a scheme on a scene, or the peer on a scene.
@@ -361,15 +330,20 @@ pub fn work_study(
             jobs.push(Job::Scheme(scene, r));
         }
     }
-    let mut done = parallel_map(&jobs, threads, |job| match job {
-        Job::Scheme(scene, r) => {
-            Done::Scheme(visit_scheme(r.scheme, SchemeOnScene(scene, r)).expect("catalogue ids"))
-        }
-        Job::Peer(scene) => {
-            let t_end = scene.visit(DefaultEnd);
-            Done::Peer(scene.visit(PeerOn { t_end }))
-        }
-    })
+    let mut done = parallel_map(
+        &jobs,
+        threads,
+        |job| match job {
+            Job::Scheme(scene, r) => Done::Scheme(
+                visit_scheme(r.scheme, SchemeOnScene(scene, r)).expect("catalogue ids"),
+            ),
+            Job::Peer(scene) => {
+                let t_end = scene.visit(DefaultEnd);
+                Done::Peer(scene.visit(PeerOn { t_end }))
+            }
+        },
+        &|_, _| {},
+    )
     .into_iter();
     let mut records = Vec::new();
     let mut timings = Vec::new();
@@ -412,9 +386,12 @@ impl SceneVisitor for DefaultEnd {
 /// it first (in parallel), then [`work_study`].
 pub fn work_on(scene: &AnyScene, threads: usize) -> Result<(WorkRecord, WorkTiming), Error> {
     let ids = scheme_ids();
-    let orders = parallel_map(&ids, threads, |id| {
-        case(id, scene).and_then(|c| c.order(&OrderSpec::default()))
-    })
+    let orders = parallel_map(
+        &ids,
+        threads,
+        |id| case(id, scene).and_then(|c| c.order(&OrderSpec::default())),
+        &|_, _| {},
+    )
     .into_iter()
     .collect::<Result<Vec<OrderRecord>, Error>>()?;
     let refs: Vec<&OrderRecord> = orders.iter().collect();

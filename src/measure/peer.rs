@@ -11,7 +11,7 @@
 //! initial step-size guess). Output is requested at the steps it takes, not
 //! interpolated, so no evaluation is spent on dense output.
 
-use super::work::{TARGETS, TargetCost, WorkPoint, cost_to_reach, energy_norm};
+use super::work::{TargetCost, WorkPoint, energy_norm, targets_of};
 use crate::scene::Scene;
 use crate::state::State;
 use ode_solvers::{Dop853, OutputType, SVector, System};
@@ -282,18 +282,12 @@ pub fn peer_work<S: Scene<D>, const D: usize>(
     Some((work, times))
 }
 
-/// The evaluations to reach each of [`TARGETS`] from the peer's points,
+/// The evaluations to reach each of [`super::work::TARGETS`] from the peer's points,
 /// loosest tolerance first.
 pub fn peer_targets(points: &[PeerPoint]) -> Vec<TargetCost> {
     let data: Vec<(f64, Option<f64>)> = points
         .iter()
         .map(|p| (p.evaluations as f64, p.error))
         .collect();
-    TARGETS
-        .iter()
-        .map(|&target| TargetCost {
-            target,
-            reach: cost_to_reach(&data, target),
-        })
-        .collect()
+    targets_of(&data)
 }

@@ -176,11 +176,17 @@ pub fn cheapest<'a>(candidates: &[(&'a str, Reach)]) -> Option<(&'a str, Reach)>
 /// The cost of each of [`TARGETS`] from `points`, taking `cost` of each.
 pub fn targets(points: &[WorkPoint], cost: impl Fn(&WorkPoint) -> f64) -> Vec<TargetCost> {
     let data: Vec<(f64, Option<f64>)> = points.iter().map(|p| (cost(p), p.error)).collect();
+    targets_of(&data)
+}
+
+/// The cost of each of [`TARGETS`] from `(cost, error)` points, cheapest
+/// first.
+pub fn targets_of(data: &[(f64, Option<f64>)]) -> Vec<TargetCost> {
     TARGETS
         .iter()
         .map(|&target| TargetCost {
             target,
-            reach: cost_to_reach(&data, target),
+            reach: cost_to_reach(data, target),
         })
         .collect()
 }

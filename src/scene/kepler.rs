@@ -10,6 +10,19 @@ use std::f64::consts::{PI, TAU};
 /// `r = 1 AU` and `v = 2 pi AU/yr` (the course notes' Earth-Sun system).
 pub const GM_SUN: f64 = 4.0 * PI * PI;
 
+/// The Sun's pull, `-GM q / |q|^3`, shared by both orbits.
+#[inline(always)]
+fn sun_acceleration<R: Real>(q: &SVector<R, 2>) -> SVector<R, 2> {
+    let r2 = q.norm_squared();
+    q * (-R::of(GM_SUN) / (r2 * r2.sqrt()))
+}
+
+/// `-GM / |q|`, the potential both orbits move in.
+#[inline(always)]
+fn sun_potential<R: Real>(q: &SVector<R, 2>) -> R {
+    -R::of(GM_SUN) / q.norm()
+}
+
 /// The Earth-Sun system of the course notes: `GM = 4 pi^2`, `r0 = (1, 0)` AU,
 /// `v0 = (0, 2 pi)` AU/yr. The orbit is the unit circle run once a year:
 /// `r(t) = (cos 2 pi t, sin 2 pi t)`, energy `|v|^2/2 - GM/|r| = -2 pi^2`.
@@ -40,13 +53,12 @@ impl Scene<2> for KeplerCircular {
 
     #[inline(always)]
     fn acceleration<R: Real>(&self, q: &SVector<R, 2>) -> SVector<R, 2> {
-        let r2 = q.norm_squared();
-        q * (-R::of(GM_SUN) / (r2 * r2.sqrt()))
+        sun_acceleration(q)
     }
 
     #[inline(always)]
     fn potential<R: Real>(&self, q: &SVector<R, 2>) -> R {
-        -R::of(GM_SUN) / q.norm()
+        sun_potential(q)
     }
 
     fn period(&self) -> f64 {
@@ -174,13 +186,12 @@ impl Scene<2> for KeplerEccentric {
 
     #[inline(always)]
     fn acceleration<R: Real>(&self, q: &SVector<R, 2>) -> SVector<R, 2> {
-        let r2 = q.norm_squared();
-        q * (-R::of(GM_SUN) / (r2 * r2.sqrt()))
+        sun_acceleration(q)
     }
 
     #[inline(always)]
     fn potential<R: Real>(&self, q: &SVector<R, 2>) -> R {
-        -R::of(GM_SUN) / q.norm()
+        sun_potential(q)
     }
 
     fn period(&self) -> f64 {

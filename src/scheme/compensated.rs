@@ -29,7 +29,7 @@
 
 use super::splitting::{Flow, SplittingTable, VELOCITY_VERLET};
 use super::verlet::{Leapfrog, StormerVerlet};
-use super::{Scheme, SchemeMeta, SchemeVisitor, StepFailure, VERLET_PHASE, scheme_ids};
+use super::{Scheme, SchemeMeta, SchemeVisitor, StepFailure, scheme_ids};
 use crate::error::Error;
 use crate::scene::Scene;
 use crate::state::{Real, State};
@@ -122,13 +122,8 @@ impl StormerVerletCompensated {
     pub const META: SchemeMeta = SchemeMeta {
         id: "stormer-verlet-compensated",
         name: "Störmer-Verlet (two-step), compensated summation",
-        order: 2,
-        symplectic: true,
-        symmetric: true,
-        force_evaluations: 1,
-        implicit: false,
         reference: "StormerVerlet with positions carried to twice the working precision: W. Kahan, Commun. ACM 8, 40 (1965); D. E. Knuth, The Art of Computer Programming 2, 4.2.2",
-        phase_error: VERLET_PHASE,
+        ..StormerVerlet::META
     };
 }
 
@@ -199,13 +194,8 @@ impl LeapfrogCompensated {
     pub const META: SchemeMeta = SchemeMeta {
         id: "leapfrog-compensated",
         name: "leap-frog, compensated summation",
-        order: 2,
-        symplectic: true,
-        symmetric: true,
-        force_evaluations: 1,
-        implicit: false,
         reference: "Leapfrog with compensated position and velocity sums: W. Kahan, Commun. ACM 8, 40 (1965); D. E. Knuth, The Art of Computer Programming 2, 4.2.2",
-        phase_error: VERLET_PHASE,
+        ..Leapfrog::META
     };
 }
 

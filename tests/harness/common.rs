@@ -8,3 +8,15 @@ pub fn suite() -> &'static SuiteRecords {
     static SUITE: OnceLock<SuiteRecords> = OnceLock::new();
     SUITE.get_or_init(|| run_suite(default_threads(), &|_, _, _| {}).expect("the suite runs"))
 }
+
+/// insta settings for the change detectors: snapshots live in the top-level
+/// `snapshots/` folder (relative to the asserting file in `tests/harness/`),
+/// each carrying a description of what it pins.
+pub fn settings(description: &str) -> insta::Settings {
+    let mut s = insta::Settings::clone_current();
+    s.set_snapshot_path("../../snapshots");
+    s.set_prepend_module_to_snapshot(false);
+    s.set_description(description);
+    s.set_omit_expression(true);
+    s
+}

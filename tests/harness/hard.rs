@@ -3,6 +3,7 @@
 //! predict, escape-or-trapped boundaries from those offsets, and eccentric
 //! orbits whose pericentre no affordable step resolves.
 
+use super::common::settings;
 use stepladder::hard::HardCases;
 use stepladder::measure::eccentric::{
     ECCENTRICITIES, OrbitEnergy, OrderStatus, Pericentre, eccentric_order,
@@ -396,15 +397,6 @@ fn stormer_round_off_grows_through_the_pericentre() {
 // ---------------------------------------------------------------------------
 // Change detectors and the command line
 // ---------------------------------------------------------------------------
-
-fn settings(description: &str) -> insta::Settings {
-    let mut s = insta::Settings::clone_current();
-    s.set_snapshot_path("../../snapshots");
-    s.set_prepend_module_to_snapshot(false);
-    s.set_description(description);
-    s.set_omit_expression(true);
-    s
-}
 
 #[test]
 fn hard_case_tables_are_unchanged() {

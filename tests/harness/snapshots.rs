@@ -2,16 +2,8 @@
 //! machine, pinned with insta in the top-level `snapshots/` folder. A diff
 //! here means a refactor changed a result: review it with `cargo insta review`.
 
+use super::common::settings;
 use stepladder::report::{geometry_table, order_table, phase_table};
-
-fn settings(description: &str) -> insta::Settings {
-    let mut s = insta::Settings::clone_current();
-    s.set_snapshot_path("../../snapshots");
-    s.set_prepend_module_to_snapshot(false);
-    s.set_description(description);
-    s.set_omit_expression(true);
-    s
-}
 
 #[test]
 fn suite_tables_are_unchanged() {
