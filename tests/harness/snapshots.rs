@@ -1,9 +1,9 @@
-//! Change detectors: the order table, rounded so it is identical on any
+//! Change detectors: the suite's tables, rounded so they are identical on any
 //! machine, pinned with insta in the top-level `snapshots/` folder. A diff
 //! here means a refactor changed a result: review it with `cargo insta review`.
 
 use super::common::settings;
-use stepladder::report::{geometry_table, order_table, phase_table};
+use stepladder::report::{geometry_table, order_table, phase_table, stability_table};
 
 #[test]
 fn suite_tables_are_unchanged() {
@@ -21,4 +21,11 @@ fn suite_tables_are_unchanged() {
     .bind(|| insta::assert_snapshot!("geometry_table", geometry_table(&records.cases)));
     settings("Leading relative phase error on the oscillator, measured and analytic.")
         .bind(|| insta::assert_snapshot!("phase_table", phase_table(&records.phase)));
+    settings(
+        "Linear stability on the oscillator: the largest stable z = h w0 (bisected to 1e-10, \
+         shown to 6 decimals), the limit per force evaluation and every stable interval on a \
+         scan to z = 1e6. The Verlet family, Euler, RK4 and implicit midpoint are also tested \
+         against their analytic limits; for the compositions this measurement is the answer.",
+    )
+    .bind(|| insta::assert_snapshot!("stability_table", stability_table(&records.stability)));
 }

@@ -2,10 +2,11 @@
 //! that must end early with a clear verdict.
 
 use stepladder::measure::energy::{EnergySpec, energy_drift};
-use stepladder::measure::stability::{StabilityRecord, stability};
+use stepladder::measure::phase::one_step_matrix;
+use stepladder::measure::stability::{StabilityRecord, spectral_radius, stability};
 use stepladder::run::Outcome;
 use stepladder::scene::Harmonic;
-use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, visit_scheme};
+use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
 
 struct Stability;
 impl SchemeVisitor for Stability {
@@ -68,6 +69,41 @@ fn implicit_midpoint_is_stable_for_every_step() {
     let r = limit("implicit-midpoint");
     assert_eq!(r.stability_limit, None, "{r:?}");
     assert_eq!(r.stable_intervals, vec![[Some(0.0), None]]);
+}
+
+/// Every gap between two stable intervals is a real instability, not
+/// round-off splitting one interval: somewhere inside it the spectral radius
+/// exceeds 1 by far more than the `1e-13` a many-stage map's rounding gives.
+struct Gaps;
+impl SchemeVisitor for Gaps {
+    type Output = Vec<String>;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Vec<String> {
+        let r = stability(scheme);
+        r.stable_intervals
+            .windows(2)
+            .filter_map(|w| {
+                let (b, c) = (
+                    w[0][1].expect("a closed interval"),
+                    w[1][0].expect("a start"),
+                );
+                let worst = (1..16)
+                    .map(|k| b + (c - b) * k as f64 / 16.0)
+                    .filter_map(|z| one_step_matrix(scheme, z).map(|m| spectral_radius(&m)))
+                    .fold(0.0, f64::max);
+                (worst < 1.0 + 1e-8)
+                    .then(|| format!("{}: gap ({b}, {c}) peaks at radius {worst}", r.scheme))
+            })
+            .collect()
+    }
+}
+
+#[test]
+fn gaps_between_stable_intervals_are_real_instabilities() {
+    let spurious: Vec<String> = scheme_ids()
+        .into_iter()
+        .flat_map(|id| visit_scheme(id, Gaps).unwrap())
+        .collect();
+    assert!(spurious.is_empty(), "{spurious:#?}");
 }
 
 /// `h w0 = 2.5` is beyond velocity Verlet's limit 2: the run must stop as
