@@ -242,10 +242,12 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
                     break;
                 }
             }
-            // A scheme of high order can fall from the ceiling to the floor
-            // within fewer rungs than a window needs: where the ladder ended
-            // there without a window, it is refined once, at the geometric
-            // middle of every pair of rungs between the two.
+            // A scheme of higher order than it claims can fall from the
+            // ceiling to the floor within fewer rungs than a window needs:
+            // where the ladder ended there without a window, it is refined
+            // once between the rungs in between, at the ratio the measured
+            // local order calls for (`2^(-2/p)`, as the ladder's own ratio
+            // follows the claimed order).
             if end == LadderEnd::Floor
                 && reference == Reference::Exact
                 && select_window(&errors(&rungs, reference), scale)
@@ -260,14 +262,28 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
                     r.error
                         .is_some_and(|e| e <= ERROR_CEILING * scale && e > FLOOR_MARGIN * floor)
                 };
-                let middles: Vec<RungSize> = rungs
+                let pairs: Vec<(&Rung, &Rung)> = rungs
                     .windows(2)
                     .filter(|w| between(&w[0]) && between(&w[1]))
-                    .filter_map(|w| {
-                        let steps = steps_for(t_end, (w[0].h * w[1].h).sqrt()).ok()?;
-                        (steps > w[0].steps && steps < w[1].steps).then_some(RungSize {
-                            h: t_end / steps as f64,
-                            steps,
+                    .map(|w| (&w[0], &w[1]))
+                    .collect();
+                let local_order = pairs
+                    .iter()
+                    .filter_map(|(a, b)| Some((a.error? / b.error?).ln() / (a.h / b.h).ln()))
+                    .filter(|p| p.is_finite())
+                    .fold(2.0, f64::max);
+                let per_rung = (2.0 / local_order) * std::f64::consts::LN_2;
+                let middles: Vec<RungSize> = pairs
+                    .iter()
+                    .flat_map(|(a, b)| {
+                        let parts = ((a.h / b.h).ln() / per_rung).ceil().max(2.0) as u32;
+                        (1..parts).filter_map(move |k| {
+                            let h = a.h * (b.h / a.h).powf(k as f64 / parts as f64);
+                            let steps = steps_for(t_end, h).ok()?;
+                            (steps > a.steps && steps < b.steps).then_some(RungSize {
+                                h: t_end / steps as f64,
+                                steps,
+                            })
                         })
                     })
                     .collect();

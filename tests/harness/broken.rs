@@ -7,7 +7,7 @@ use stepladder::measure::Verdict;
 use stepladder::measure::order::{OrderSpec, global_order};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene};
 use stepladder::scheme::{
-    Flow, Leapfrog, Scheme, SchemeMeta, SplittingTable, StepFailure, VELOCITY_VERLET,
+    Flow, KAHAN_LI8, Leapfrog, Scheme, SchemeMeta, SplittingTable, StepFailure, VELOCITY_VERLET,
 };
 use stepladder::state::{Real, State};
 
@@ -104,4 +104,64 @@ fn an_overclaimed_order_fails() {
         &[0.5, 0.5],
     );
     assert_caught(&OVERCLAIMED, &KeplerCircular, 2.0);
+}
+
+/// A correct scheme under claimed metadata: every step is the inner scheme's.
+struct Claiming<M: 'static> {
+    inner: &'static M,
+    meta: SchemeMeta,
+}
+
+impl<M: Scheme> Scheme for Claiming<M> {
+    type Carry<R: Real, const D: usize> = M::Carry<R, D>;
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+    fn start<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        s: &State<D, R>,
+        h: R,
+    ) -> Self::Carry<R, D> {
+        self.inner.start(scene, s, h)
+    }
+    fn step<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        c: &mut Self::Carry<R, D>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        self.inner.step(scene, c, h)
+    }
+    fn state<R: Real, const D: usize>(&self, c: &Self::Carry<R, D>, h: R) -> State<D, R> {
+        self.inner.state(c, h)
+    }
+}
+
+/// An eighth-order scheme claiming second order gets the halving ladder of a
+/// second-order one, on which its error falls 256-fold a rung, from the
+/// ceiling to the round-off floor in fewer rungs than a window needs. The
+/// ladder must then be refined between those rungs, so that the wrong claim
+/// gets a failing verdict with the true order, not "no verdict".
+#[test]
+fn an_underclaimed_order_is_refined_into_a_failure() {
+    let underclaimed = Claiming {
+        inner: &KAHAN_LI8,
+        meta: SchemeMeta {
+            id: "underclaimed-kahan-li8",
+            order: 2,
+            ..*KAHAN_LI8.meta()
+        },
+    };
+    for r in [
+        global_order(&underclaimed, &Harmonic::default(), &OrderSpec::default()).unwrap(),
+        global_order(&underclaimed, &KeplerCircular, &OrderSpec::default()).unwrap(),
+    ] {
+        assert!(r.refined, "{} was not refined: {}", r.scene, r.reason);
+        assert_eq!(r.verdict, Verdict::Fail, "{}: {}", r.scene, r.reason);
+        let p = r
+            .measured_order
+            .unwrap_or_else(|| panic!("{}: {}", r.scene, r.reason));
+        assert!((p - 8.0).abs() < 0.3, "{}: measured {p}", r.scene);
+    }
 }

@@ -116,6 +116,12 @@ fn speed_record_is_consistent_with_counted_evaluations() {
             "{}",
             s.id
         );
+        let ns_eval = s.ns_per_step / s.force_evaluations_per_step;
+        assert!(
+            (s.ns_per_force_evaluation - ns_eval).abs() <= 1e-12 * ns_eval,
+            "{}",
+            s.id
+        );
         let per = s.ns_per_force_evaluation / record.floor_ns_per_step;
         assert!(
             (s.ratio_per_evaluation - per).abs() <= 1e-12 * per,
