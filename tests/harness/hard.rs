@@ -242,6 +242,39 @@ fn verlet_boundaries_follow_from_the_barrier_offsets() {
     }
 }
 
+/// In the well's own units, `t' = sqrt(k) t` and `x' = x/alpha`, the
+/// equations of motion do not depend on `k` or `alpha`: a well four times
+/// stiffer (and twice as wide) has half the period and half the largest
+/// correct step, and classifies every step as the unit well does twice it.
+#[test]
+fn escape_or_trapped_follows_the_wells_units() {
+    let unit = EscapeSpec::new(1e-2).unwrap();
+    let stiff = EscapeSpec {
+        k: 4.0,
+        alpha: 2.0,
+        ..unit
+    };
+    let a = escape_or_trapped(&VELOCITY_VERLET, unit).unwrap();
+    let b = escape_or_trapped(&VELOCITY_VERLET, stiff).unwrap();
+    assert_eq!(b.spec, stiff);
+    assert!(relative(b.trapped_period, a.trapped_period / 2.0) < 1e-12);
+    let (ha, hb) = (a.largest_correct.unwrap(), b.largest_correct.unwrap());
+    assert!(relative(hb, ha / 2.0) < 1e-6, "{hb} against {ha} / 2");
+    let [correct, wrong] = a.bracket.unwrap();
+    for (h, right) in [(correct, true), (wrong, false)] {
+        assert_eq!(
+            classify_at(&VELOCITY_VERLET, unit, h).unwrap().correct(),
+            right
+        );
+        assert_eq!(
+            classify_at(&VELOCITY_VERLET, stiff, h / 2.0)
+                .unwrap()
+                .correct(),
+            right
+        );
+    }
+}
+
 /// Explicit Euler gains energy, so its escaping orbit always escapes and its
 /// trapped one escapes too once the gain over the run exceeds the gap; the
 /// gain is first order in `h`, so the boundary is proportional to `delta`.
