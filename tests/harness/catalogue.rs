@@ -1,9 +1,10 @@
 //! The catalogue against its own claims, on every built-in scene.
 
 use stepladder::scene::{Counted, Harmonic, KeplerCircular, Scene};
+use stepladder::scheme::compensated::{any_scheme_ids, paired_ids, variants};
 use stepladder::scheme::{
-    Flow, POSITION_VERLET, Scheme, SchemeVisitor, TABLES, VELOCITY_VERLET, catalogue, scheme_ids,
-    visit_scheme,
+    Flow, POSITION_VERLET, Scheme, SchemeMeta, SchemeVisitor, TABLES, VELOCITY_VERLET, catalogue,
+    scheme_ids, visit_scheme,
 };
 
 #[test]
@@ -17,14 +18,21 @@ fn every_scheme_has_its_claimed_order_on_every_scene() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
+/// Every id the command line accepts (the catalogue and the compensated
+/// variants) names one scheme: ids and names unique, ids in kebab-case, and
+/// each variant documents itself rather than inheriting its twin's text.
 #[test]
 fn registry_ids_are_unique_kebab_case_and_documented() {
-    let ids = scheme_ids();
-    let mut sorted = ids.clone();
-    sorted.sort();
-    sorted.dedup();
-    assert_eq!(sorted.len(), ids.len(), "duplicate ids in {ids:?}");
-    for m in catalogue() {
+    let metas: Vec<&SchemeMeta> = catalogue().into_iter().chain(variants()).collect();
+    let ids: Vec<&str> = metas.iter().map(|m| m.id).collect();
+    assert_eq!(ids, any_scheme_ids());
+    for key in [|m: &SchemeMeta| m.id, |m: &SchemeMeta| m.name] {
+        let mut sorted: Vec<&str> = metas.iter().map(|m| key(m)).collect();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(sorted.len(), metas.len(), "duplicates in {sorted:?}");
+    }
+    for m in &metas {
         assert!(
             !m.id.is_empty()
                 && m.id.split('-').all(|w| !w.is_empty()
@@ -39,6 +47,10 @@ fn registry_ids_are_unique_kebab_case_and_documented() {
             m.id
         );
         assert!(m.order >= 1 && m.force_evaluations >= 1, "{}", m.id);
+    }
+    for (twin, variant) in paired_ids().into_iter().zip(variants()) {
+        let twin = catalogue().into_iter().find(|m| m.id == twin).unwrap();
+        assert_ne!(twin.reference, variant.reference, "{}", variant.id);
     }
 }
 
