@@ -138,3 +138,54 @@ fn without_an_exact_solution_successive_rungs_give_the_same_order() {
         );
     }
 }
+
+/// The oscillator's exact flow (`w0 = 1`): a rotation by the step.
+struct ExactRotation;
+
+const EXACT_ROTATION: stepladder::scheme::SchemeMeta = stepladder::scheme::SchemeMeta {
+    id: "exact-rotation",
+    ..VELOCITY_VERLET.meta
+};
+
+impl stepladder::scheme::OneStep for ExactRotation {
+    fn meta(&self) -> &stepladder::scheme::SchemeMeta {
+        &EXACT_ROTATION
+    }
+    fn advance<R: stepladder::state::Real, const D: usize, S: Scene<D>>(
+        &self,
+        _: &S,
+        s: &mut stepladder::state::State<D, R>,
+        h: R,
+    ) -> Result<(), stepladder::scheme::StepFailure> {
+        let (c, sn) = (h.cos(), h.sin());
+        let q = s.q * c + s.v * sn;
+        s.v = s.v * c - s.q * sn;
+        s.q = q;
+        Ok(())
+    }
+}
+
+/// A scheme exact on the scene is at the round-off floor from its first
+/// rung: no order can be measured (a failed verdict: the claim cannot be
+/// confirmed), and the ladder must stop there after two rungs on the floor
+/// instead of running on to the step cap.
+#[test]
+fn an_exact_scheme_stops_at_the_floor_without_a_verdict() {
+    let r = global_order(&ExactRotation, &Harmonic::default(), &OrderSpec::default()).unwrap();
+    assert_eq!(
+        r.ladder_end,
+        stepladder::ladder::LadderEnd::Floor,
+        "{}",
+        r.reason
+    );
+    assert!(r.rungs.len() <= 4, "{} rungs", r.rungs.len());
+    assert!(r.rungs.iter().all(|g| g.error.is_some_and(|e| e < 1e-13)));
+    assert_eq!(r.window, None);
+    assert_eq!(r.measured_order, None);
+    assert_eq!(
+        r.verdict,
+        stepladder::measure::Verdict::Fail,
+        "{}",
+        r.reason
+    );
+}
