@@ -4,6 +4,7 @@
 use serde_json::Value;
 use std::process::{Command, Output};
 
+/// Runs the command line with `args`.
 pub fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_stepladder"))
         .args(args)
@@ -11,7 +12,8 @@ pub fn run(args: &[&str]) -> Output {
         .unwrap()
 }
 
-fn json(args: &[&str]) -> Value {
+/// The JSON a successful run prints.
+pub fn json(args: &[&str]) -> Value {
     let out = run(args);
     assert!(
         out.status.success(),

@@ -3,6 +3,7 @@
 //! predict, escape-or-trapped boundaries from those offsets, and eccentric
 //! orbits whose pericentre no affordable step resolves.
 
+use super::cli::{json, refused};
 use super::common::settings;
 use stepladder::hard::HardCases;
 use stepladder::measure::eccentric::{
@@ -471,45 +472,20 @@ fn hard_case_tables_are_unchanged() {
     .bind(|| insta::assert_snapshot!("hard_escape", escape_table(&h.escape, &h.following)));
 }
 
-fn run(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_stepladder"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
 #[test]
 fn hard_case_commands_answer_in_json_and_refuse_bad_input_in_one_line() {
-    let out = run(&["separatrix", "--scheme", "position-verlet", "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = json(&["separatrix", "--scheme", "position-verlet", "--json"]);
     assert_eq!(v[0]["scheme"], "position-verlet");
     assert_eq!(v[0]["event"], "falls-back");
     assert!(v[0]["slope_in_step"]["slope"].as_f64().unwrap() > 0.0);
 
-    let out = run(&[
+    let v = json(&[
         "escape", "--scheme", "leapfrog", "--delta", "0.01", "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["escape"][0]["fails_by"], "trapped-escapes");
     assert!(v["escape"][0]["largest_correct"].as_f64().unwrap() > 0.1);
 
-    let out = run(&["eccentric", "--e", "0.5", "--scheme", "pefrl", "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = json(&["eccentric", "--e", "0.5", "--scheme", "pefrl", "--json"]);
     assert_eq!(v["orders"][0]["status"], "pass");
     assert!((v["orders"][0]["pericentre"]["e"].as_f64().unwrap() - 0.5).abs() < 1e-15);
     assert_eq!(v["energy"][0]["class"], "bounded");
@@ -535,12 +511,7 @@ fn hard_case_commands_answer_in_json_and_refuse_bad_input_in_one_line() {
             "unknown scheme 'rk9'",
         ),
     ] {
-        let out = run(args);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert!(out.stdout.is_empty(), "{args:?} printed to stdout");
-        assert!(err.contains(needle), "{args:?}: {err:?} lacks {needle:?}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        refused(args, needle);
     }
 }
 

@@ -2,6 +2,7 @@
 //! twins' claims, lower their floors by what theory says they must, and the
 //! round-off of long runs grows by the law derived for it.
 
+use super::cli::{json, refused, run};
 use stepladder::guard::assert_claims;
 use stepladder::measure::roundoff::{PairRecord, RoundoffRecord};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene};
@@ -227,16 +228,9 @@ fn long_runs_walk_randomly_and_compensation_does_not_make_it_worse() {
     }
 }
 
-fn stepladder(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_stepladder"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
 #[test]
 fn roundoff_and_longrun_on_the_command_line() {
-    let out = stepladder(&[
+    let v = json(&[
         "roundoff",
         "--scene",
         "harmonic",
@@ -246,12 +240,6 @@ fn roundoff_and_longrun_on_the_command_line() {
         "1048576",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["scene"], "harmonic");
     let p = &v["pairs"][0];
     assert_eq!(p["plain"], "stormer-verlet");
@@ -267,7 +255,7 @@ fn roundoff_and_longrun_on_the_command_line() {
     }
     assert!(p["plain_floor"]["floor"].as_f64().unwrap() > 0.0);
 
-    let out = stepladder(&[
+    let v = json(&[
         "longrun",
         "--scheme",
         "velocity-verlet-compensated",
@@ -275,19 +263,13 @@ fn roundoff_and_longrun_on_the_command_line() {
         "20000",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v[0]["scheme"], "velocity-verlet-compensated");
     assert_eq!(v[0]["compensated"], true);
     assert_eq!(v[0]["invariant"], "modified-energy");
     assert!(v[0]["growth_exponent"].is_f64());
 
     // a variant is a scheme like any other for the single-case studies
-    let out = stepladder(&[
+    let out = run(&[
         "order",
         "--scheme",
         "leapfrog-compensated",
@@ -297,7 +279,7 @@ fn roundoff_and_longrun_on_the_command_line() {
     assert!(
         out.status.success(),
         "{}",
-        String::from_utf8_lossy(&out.stdout)
+        String::from_utf8_lossy(&out.stderr)
     );
 }
 
@@ -328,11 +310,6 @@ fn bad_roundoff_and_longrun_requests_are_refused_in_one_line() {
         ),
         (&["roundoff", "--scheme", "euler"][..], "valid schemes"),
     ] {
-        let out = stepladder(args);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert!(out.stdout.is_empty(), "{args:?} printed to stdout");
-        assert!(err.contains(needle), "{args:?}: {err:?} lacks {needle:?}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        refused(args, needle);
     }
 }
