@@ -269,8 +269,7 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
                     .collect();
                 let local_order = pairs
                     .iter()
-                    .filter_map(|(a, b)| Some((a.error? / b.error?).ln() / (a.h / b.h).ln()))
-                    .filter(|p| p.is_finite())
+                    .filter_map(|(a, b)| local_order((a.h, a.error), (b.h, b.error)))
                     .fold(2.0, f64::max);
                 let per_rung = (2.0 / local_order) * std::f64::consts::LN_2;
                 let middles: Vec<RungSize> = pairs
