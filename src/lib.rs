@@ -42,6 +42,7 @@
 #![warn(missing_docs)]
 
 pub mod case;
+pub mod corpus;
 pub mod cli;
 pub mod error;
 pub mod guard;
