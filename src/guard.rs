@@ -99,28 +99,30 @@ fn study<T>(result: Result<T, crate::error::Error>) -> T {
 
 /// The failure message of an order record, or `None` if it passed.
 pub fn order_failure(r: &OrderRecord) -> Option<String> {
-    (r.verdict == Verdict::Fail).then(|| {
+    (r.verdict != Verdict::Pass).then(|| {
         let ladder = match (r.rungs.first(), r.rungs.last()) {
             (Some(a), Some(b)) => format!("{} rungs, h = {:.3e} .. {:.3e}", r.rungs.len(), a.h, b.h),
             _ => "no rungs".to_string(),
         };
         format!(
-            "stepladder: `{}` on `{}`: order {} claimed, measured {} in {} over rungs {}; ladder {ladder} to t_end = {}: {}",
+            "stepladder: `{}` on `{}`: {} order {} claimed, measured {} in {} over rungs {}; ladder {ladder} to t_end = {}: {}{}",
             r.scheme,
             r.scene,
+            r.verdict.name(),
             r.theoretical_order,
             r.measured_order.map_or("nothing".into(), |p| format!("{p:.4}")),
             r.ci95.map_or("no interval".into(), |c| format!("[{:.4}, {:.4}]", c[0], c[1])),
             r.window.map_or("none".into(), |[a, b]| format!("{a}..{b}")),
             r.t_end,
-            r.reason
+            r.reason,
+            r.advice.as_ref().map_or(String::new(), |a| format!("; to decide: {a}"))
         )
     })
 }
 
 /// The failure message of a symplecticity record, or `None` if it passed.
 pub fn symplectic_failure(r: &SymplecticRecord) -> Option<String> {
-    (r.verdict == Verdict::Fail).then(|| {
+    (r.verdict != Verdict::Pass).then(|| {
         format!(
             "stepladder: `{}` on `{}`: symplectic claimed {}, measured residual {:.3e} (tolerance {:e}), det(J) - 1 = {:.3e} over {} samples: {}",
             r.scheme,
@@ -137,7 +139,7 @@ pub fn symplectic_failure(r: &SymplecticRecord) -> Option<String> {
 
 /// The failure message of a reversibility record, or `None` if it passed.
 pub fn reverse_failure(r: &ReverseRecord) -> Option<String> {
-    (r.verdict == Verdict::Fail).then(|| {
+    (r.verdict != Verdict::Pass).then(|| {
         format!(
             "stepladder: `{}` on `{}`: time-symmetric claimed {}, {} steps of h = {} and back return within {} ulps (tolerance {:.3e}): {}",
             r.scheme,
@@ -154,7 +156,7 @@ pub fn reverse_failure(r: &ReverseRecord) -> Option<String> {
 
 /// The failure message of an energy record, or `None` if it passed.
 pub fn energy_failure(r: &EnergyRecord) -> Option<String> {
-    (r.verdict == Verdict::Fail).then(|| {
+    (r.verdict != Verdict::Pass).then(|| {
         format!(
             "stepladder: `{}` on `{}`: energy expected {}, measured {} (growth exponent {}, max relative error {:.3e}) over {} steps of h = {}: {}",
             r.scheme,

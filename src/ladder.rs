@@ -20,33 +20,37 @@ pub const SECONDS_PER_STEP: f64 = 3e-8;
 /// drops such rungs, and they cost little).
 pub const AUTO_START: f64 = 1.0 / 8.0;
 
-/// The automatic ladder's largest rung, in steps: it bounds the cost of a
-/// ladder to a fraction of a second.
-pub const AUTO_MAX_RUNG_STEPS: u64 = 1 << 23;
+/// The automatic ladder's largest rung, in steps (a step of 1/741455 period
+/// over the default 2 sqrt(2) periods). With two rungs a halving and a twin
+/// for every rung, a ladder to the cap takes about `2 * 3.4 * 2^21 = 1.4e7`
+/// steps, a fraction of a second for a scene of a few flops a force. Every
+/// scheme of order two or more reaches the round-off floor well before it on
+/// the built-in scenes; a first-order scheme on a sharp pericentre may not
+/// resolve it at all, and the study then says so and how to go further.
+pub const AUTO_MAX_RUNG_STEPS: u64 = 1 << 21;
 
-/// The automatic ladder's ratio for a scheme of order `p`: halving up to
-/// order 2; beyond, `2^(-2/p)`, so the error still falls by about 4 per rung
-/// and a high-order scheme gets enough rungs between its pre-asymptotic
-/// regime and the round-off floor. (Finer ratios make neighbouring rungs so
-/// alike that round-off dominates their local orders.)
-pub fn auto_ratio(order: u32) -> f64 {
-    if order <= 2 {
-        0.5
-    } else {
-        2f64.powf(-2.0 / order as f64)
-    }
+/// Interleaved halving ladders the automatic ladder runs for a scheme that
+/// claims order `p`: `ceil(p / 2)`, a ratio `2^(-1/m)` between neighbouring
+/// rungs, so the error falls about fourfold a rung whatever the order, and
+/// at least two, so that a window of six rungs needs the error resolved over
+/// two and a half halvings of the step rather than five: a first- or
+/// second-order scheme on a slow scene may resolve its motion only a few
+/// halvings above the step cap. A high-order scheme gets enough rungs
+/// between its pre-asymptotic regime and the round-off floor; finer ratios
+/// would make neighbouring rungs so alike that little separates their errors.
+pub fn per_octave(order: u32) -> u32 {
+    order.div_ceil(2).max(2)
 }
 
 /// How the step sizes of an order study are chosen.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "kebab-case", tag = "kind")]
 pub enum LadderChoice {
-    /// Chosen from the scheme and the data: start at [`AUTO_START`] periods,
-    /// refine by [`auto_ratio`] until the asymptotic window is full
-    /// ([`crate::tolerance::WINDOW_RUNGS`] rungs), the round-off floor is
-    /// reached, or a rung would exceed [`AUTO_MAX_RUNG_STEPS`].
+    /// Chosen from the scheme and the data: [`per_octave`] interleaved
+    /// halving ladders from [`AUTO_START`] periods, down to the round-off
+    /// floor or until a rung would exceed [`AUTO_MAX_RUNG_STEPS`].
     Auto,
-    /// The automatic ladder with another ratio or step cap.
+    /// The automatic ladder with another density of rungs or step cap.
     AutoWith(AutoLadder),
     /// Exactly these rungs.
     Fixed(Ladder),
@@ -55,8 +59,9 @@ pub enum LadderChoice {
 /// The automatic ladder's settings.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct AutoLadder {
-    /// Each rung's step over the previous one; `None` for [`auto_ratio`].
-    pub ratio: Option<f64>,
+    /// Rungs per halving of the step (interleaved halving ladders); `None`
+    /// for [`per_octave`] of the claimed order.
+    pub per_octave: Option<u32>,
     /// The largest rung, in steps.
     pub max_rung_steps: u64,
 }
@@ -64,7 +69,7 @@ pub struct AutoLadder {
 impl Default for AutoLadder {
     fn default() -> Self {
         Self {
-            ratio: None,
+            per_octave: None,
             max_rung_steps: AUTO_MAX_RUNG_STEPS,
         }
     }
@@ -74,9 +79,7 @@ impl Default for AutoLadder {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LadderEnd {
-    /// The window was full and its local orders agreed.
-    Settled,
-    /// The error reached the round-off floor.
+    /// Round-off reached the errors of the finest rungs.
     Floor,
     /// The next rung would have exceeded the step cap.
     Cap,

@@ -24,7 +24,7 @@
 //!   velocity Verlet and leap-frog, so its distance from them is round-off
 //!   alone, measured across the first full passage.
 
-use super::order::{OrderSpec, Rung, analyse, global_order};
+use super::order::{OrderSpec, Rung, RungData, analyse, global_order};
 use crate::error::Error;
 use crate::ladder::{AutoLadder, LadderChoice, LadderEnd, steps_for};
 use crate::run::{Outcome, integrate};
@@ -32,7 +32,7 @@ use crate::scene::{KeplerEccentric, Scene};
 use crate::scheme::{Leapfrog, Scheme, StormerVerlet, VELOCITY_VERLET};
 use crate::state::State;
 use crate::tolerance::{
-    self, ECCENTRIC_DRIFT_FRACTION, ECCENTRIC_LOW_ORDER_RATIO, ERROR_CEILING, MIN_WINDOW,
+    self, ECCENTRIC_DRIFT_FRACTION, ECCENTRIC_LOW_ORDER_PER_OCTAVE, ERROR_CEILING, MIN_WINDOW,
     round_off_energy,
 };
 use serde::Serialize;
@@ -160,7 +160,7 @@ pub struct EccentricOrderRecord {
 /// Runs the order study of `scheme` on the orbit of eccentricity `e`: the
 /// automatic ladder of the main study (from 1/8 period, stopping once the
 /// window has settled or the round-off floor is reached), with the ratio of
-/// [`ECCENTRIC_LOW_ORDER_RATIO`] up to second order and rungs capped at
+/// [`ECCENTRIC_LOW_ORDER_PER_OCTAVE`] rungs a halving up to second order and rungs capped at
 /// `max_rung_steps`, over [`tolerance::ECCENTRIC_PERIODS`] periods.
 pub fn eccentric_order<M: Scheme>(
     scheme: &M,
@@ -175,7 +175,7 @@ pub fn eccentric_order<M: Scheme>(
     let spec = OrderSpec {
         t_end: Some(t_end),
         ladder: LadderChoice::AutoWith(AutoLadder {
-            ratio: (meta.order <= 2).then_some(ECCENTRIC_LOW_ORDER_RATIO),
+            per_octave: (meta.order <= 2).then_some(ECCENTRIC_LOW_ORDER_PER_OCTAVE),
             max_rung_steps,
         }),
     };
@@ -185,12 +185,19 @@ pub fn eccentric_order<M: Scheme>(
     let window = record.window;
     let rungs = record.rungs;
     // finer rungs left out of a window that did not end at the floor were
-    // scattered by round-off (see `select_window`)
+    // touched by round-off (see `select_window`)
     let left_out = match (window, stopped) {
-        (Some([_, b]), LadderEnd::Cap | LadderEnd::Settled) => rungs.len() - 1 - b,
+        (Some([_, b]), LadderEnd::Cap) => rungs.len() - 1 - b,
         _ => 0,
     };
-    let finals: Vec<(f64, Option<f64>)> = rungs.iter().map(|r| (r.h, r.final_error)).collect();
+    let finals: Vec<RungData> = rungs
+        .iter()
+        .map(|r| RungData {
+            h: r.h,
+            error: r.final_error,
+            round_off: r.round_off_bound.unwrap_or(0.0),
+        })
+        .collect();
     let final_analysis = analyse(&finals, scale);
     let ceiling = ERROR_CEILING * scale;
     let resolved = |r: &Rung| r.error.is_some_and(|x| x <= ceiling);
@@ -214,21 +221,14 @@ pub fn eccentric_order<M: Scheme>(
                                          refined between its resolved rungs"
             .to_string(),
         LadderEnd::Floor => "the ladder reached the round-off floor".to_string(),
-        LadderEnd::Settled => "the window settled".to_string(),
     };
     let final_note = final_analysis.fit.map_or(String::new(), |f| {
         format!("; the error at t_end alone falls as h^{:.2}", f.order)
     });
     let left_note = match left_out {
         0 => String::new(),
-        k => format!(
-            " (the finest {k} rung{} left out: {} local order{} scatter{} beyond the window's \
-             5%)",
-            if k > 1 { "s" } else { "" },
-            if k > 1 { "their" } else { "its" },
-            if k > 1 { "s" } else { "" },
-            if k > 1 { "" } else { "s" },
-        ),
+        1 => " (the finest rung left out: round-off)".to_string(),
+        k => format!(" (the finest {k} rungs left out: round-off)"),
     };
     let (status, reason) = match (record.fit, record.ci95, window) {
         (Some(f), Some(ci), Some([a, b])) => {
@@ -240,28 +240,29 @@ pub fn eccentric_order<M: Scheme>(
                 in_tau(rungs[b].h)
             );
             match tolerance::order_verdict(theoretical, f.order, ci) {
-                Ok(()) => (
+                Ok(note) => (
                     OrderStatus::Pass,
                     format!(
-                        "order {:.3} in [{:.3}, {:.3}] {span}; {cap_note}",
-                        f.order, ci[0], ci[1]
+                        "order {:.3} in [{:.3}, {:.3}] {span}{}; {cap_note}",
+                        f.order,
+                        ci[0],
+                        ci[1],
+                        note.map_or(String::new(), |n| format!(": {n}"))
                     ),
                 ),
-                Err(why) => {
-                    let direction = if f.order > theoretical {
-                        "the error falls faster than claimed: if the scheme has its claimed \
-                         order, its leading error term is still smaller than the one measured \
-                         at every step run"
-                    } else {
-                        "the error falls more slowly than claimed at these steps"
-                    };
-                    (
-                        OrderStatus::Fail,
-                        format!("{why}, {span}; {direction}; {cap_note}{final_note}"),
-                    )
-                }
+                Err(why) => (
+                    OrderStatus::Fail,
+                    format!(
+                        "{why}, {span}; the error falls more slowly than claimed at these \
+                         steps; {cap_note}{final_note}"
+                    ),
+                ),
             }
         }
+        _ if record.verdict == super::Verdict::Fail => (
+            OrderStatus::Fail,
+            format!("{}; {cap_note}", record.reason),
+        ),
         _ if resolved_below.is_none() => {
             let fine: Vec<f64> = rungs
                 .iter()

@@ -7,23 +7,29 @@
 //! the interval is wide, so a correct scheme would be reported outside its
 //! own order. [`order_fit`] therefore fits the first terms of the expansion,
 //!
-//! `ln e = ln C + p ln h + b1 (h/H) + b2 (h/H)^2`   (H the window's largest h),
+//! `ln e = ln C + p ln h + b (h/H)`   or   `ln e = ln C + p ln h + b (h/H)^2`
 //!
-//! which is `ln(C h^p (1 + c1 h + c2 h^2 + ...))` to second order, and takes
-//! `p` with its Student's t interval. Each
-//! correction enters only when the data call for it (forward selection by a
-//! partial F-test at 5%): where round-off noise hides the curvature, as in
-//! the short windows of high-order schemes, extra terms would only trade it
-//! for variance. The interval is widened by a measured systematic: how far
-//! `p` moves when the window loses one or two of its coarsest or its finest
-//! rungs, which is what the choice of window contributes.
+//! (`H` the window's largest `h`): `ln(C h^p (1 + c h))` to first order for a
+//! scheme whose error expansion has every power, `ln(C h^p (1 + c h^2))` for
+//! a symmetric one, whose expansion has only even powers. The correction
+//! enters only when the data call for it (a partial F-test at 5% against the
+//! straight line): where round-off hides the curvature, it would only trade
+//! bias for variance. `p` comes with its Student's t interval, widened by two
+//! measured systematics: how far `p` moves when the window loses one or two
+//! of its coarsest or its finest rungs (the choice of window), and how far
+//! it moves between the two corrections when both pass the test (the choice
+//! of model, which two or three halvings of data cannot settle).
 
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor, StudentsT};
 
-/// Most correction terms the fit may use.
-pub const MAX_CORRECTIONS: usize = 2;
+/// Most correction terms the fit may use: one. A window spans two or three
+/// halvings of the step, over which `h/H`, `(h/H)^2` and `ln h` are so nearly
+/// collinear that a fit with both corrections trades one for the other and
+/// moves `p` by tenths; with one, the choice between them is what the data
+/// cannot settle, and the interval carries it (see [`order_fit`]).
+pub const MAX_CORRECTIONS: usize = 1;
 
 /// Fewest points an order fit takes: two coefficients, the corrections,
 /// and two degrees of freedom.
@@ -69,37 +75,31 @@ pub fn order_fit(points: &[(f64, f64)]) -> Option<OrderFit> {
         return None;
     }
     let line = power_law(points)?;
-    // forward selection: add the correction that explains most, while it
-    // explains significantly more (partial F-test at 5%)
-    let mut chosen: Vec<Correction> = Vec::new();
-    let mut fit = expansion(points, &chosen)?;
-    while chosen.len() < MAX_CORRECTIONS {
-        let best = [Correction::Linear, Correction::Quadratic]
-            .into_iter()
-            .filter(|c| !chosen.contains(c))
-            .filter_map(|c| {
-                let mut with = chosen.clone();
-                with.push(c);
-                expansion(points, &with).map(|f| (c, f))
-            })
-            .min_by(|a, b| a.1.residual.total_cmp(&b.1.residual));
-        let Some((candidate, richer)) = best else {
-            break;
-        };
-        let f = (fit.residual - richer.residual) / (richer.residual / richer.dof as f64);
-        let critical = FisherSnedecor::new(1.0, richer.dof as f64)
-            .expect("positive degrees of freedom")
-            .inverse_cdf(0.95);
-        if f.is_nan() || f <= critical {
-            break;
-        }
-        chosen.push(candidate);
-        fit = richer;
-    }
+    let plain = expansion(points, &[])?;
+    // each correction on its own, kept when it explains significantly more
+    // than the line (partial F-test at 5%)
+    let significant: Vec<(Correction, Expansion)> = [Correction::Linear, Correction::Quadratic]
+        .into_iter()
+        .filter_map(|c| Some((c, expansion(points, &[c])?)))
+        .filter(|(_, richer)| {
+            let f = (plain.residual - richer.residual) / (richer.residual / richer.dof as f64);
+            let critical = FisherSnedecor::new(1.0, richer.dof as f64)
+                .expect("positive degrees of freedom")
+                .inverse_cdf(0.95);
+            f > critical
+        })
+        .collect();
+    let best = significant
+        .iter()
+        .min_by(|a, b| a.1.residual.total_cmp(&b.1.residual));
+    let (chosen, fit): (Vec<Correction>, &Expansion) = match best {
+        Some((c, f)) => (vec![*c], f),
+        None => (vec![], &plain),
+    };
     let t_quantile = t975(fit.dof);
     // the window's systematic: the fit without one or two of its coarsest
     // rungs (the most pre-asymptotic) or of its finest (the nearest the floor)
-    let systematic = [
+    let window = [
         &points[1..],
         &points[2..],
         &points[..n - 1],
@@ -109,6 +109,14 @@ pub fn order_fit(points: &[(f64, f64)]) -> Option<OrderFit> {
     .filter_map(|sub| expansion(sub, &chosen))
     .map(|sub| (sub.order - fit.order).abs())
     .fold(0.0, f64::max);
+    // the model's systematic: where both corrections fit significantly
+    // better than the line, the data cannot tell which next term of the
+    // expansion they show, and `p` depends on the choice
+    let model = significant
+        .iter()
+        .map(|(_, f)| (f.order - fit.order).abs())
+        .fold(0.0, f64::max);
+    let systematic = window.max(model);
     let half = t_quantile * fit.standard_error + systematic;
     let mut corrections = [None; MAX_CORRECTIONS];
     for (slot, c) in corrections.iter_mut().zip(&chosen) {
@@ -174,7 +182,7 @@ fn expansion(points: &[(f64, f64)], corrections: &[Correction]) -> Option<Expans
 }
 
 /// Student's t quantile at 0.975 with `dof` degrees of freedom.
-fn t975(dof: usize) -> f64 {
+pub(crate) fn t975(dof: usize) -> f64 {
     StudentsT::new(0.0, 1.0, dof as f64)
         .expect("positive degrees of freedom")
         .inverse_cdf(0.975)

@@ -34,13 +34,13 @@
 //! `T_D` and `dE` on a ladder of steps and fits the three slopes.
 
 use super::fit::{PowerLaw, power_law};
-use super::order::{DropReason, local_order, select_window};
+use super::order::{DropReason, RoundOffModel, RungData, local_order, select_window};
 use crate::error::Error;
-use crate::scene::{Scene, Separatrix};
+use crate::scene::{Scaled, Scene, Separatrix};
 use crate::scheme::Scheme;
 use crate::tolerance::{
-    self, DEPARTURE_FRACTION, ERROR_CEILING, SEPARATRIX_MIN_STEP, SEPARATRIX_OFFSET_CEILING,
-    SEPARATRIX_SLOPE_TOLERANCE, SEPARATRIX_TIME_LIMIT, WINDOW_RUNGS,
+    DEPARTURE_FRACTION, ERROR_CEILING, SEPARATRIX_MIN_STEP, SEPARATRIX_OFFSET_CEILING,
+    SEPARATRIX_SLOPE_TOLERANCE, SEPARATRIX_TIME_LIMIT, TWIN_SCALE,
 };
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, StudentsT};
@@ -118,6 +118,9 @@ pub struct FollowingRung {
     pub departure: Option<f64>,
     /// The local exponent of `|offset|` against the previous rung.
     pub local_exponent: Option<f64>,
+    /// The offset's distance from that of a twin run in units [`TWIN_SCALE`]
+    /// smaller: a sample of its round-off.
+    pub round_off_sample: Option<f64>,
     /// In the fitted window.
     pub used: bool,
     /// Why not, when judged.
@@ -233,24 +236,43 @@ pub fn following<M: Scheme>(scheme: &M, well: WellSpec) -> Result<FollowingRecor
     // the ceiling of the window search is the offset ceiling
     let scale = SEPARATRIX_OFFSET_CEILING / ERROR_CEILING;
     let mut rungs: Vec<FollowingRung> = Vec::new();
+    // each run has a twin in units TWIN_SCALE smaller, the same motion
+    // rounded differently: the offsets' difference is a sample of the
+    // offset's round-off (see `tolerance::TWIN_SCALE`)
+    let twin_scene = Scaled::new(sep, TWIN_SCALE);
     for j in 0.. {
         let h = unit * ratio.powi(j);
         if h < SEPARATRIX_MIN_STEP * unit {
             break;
         }
-        rungs.push(run_rung(scheme, &sep, well, h));
-        let data = offsets(&rungs);
-        let choice = select_window(&data, scale);
-        let settled = choice.window_len() >= WINDOW_RUNGS
-            && choice.spread
-                <= tolerance::settled_tolerance(choice.median_local_order.unwrap_or(1.0));
-        if settled || choice.at_floor >= 2 {
+        let mut rung = run_rung(scheme, &sep, &sep, 1.0, well, h);
+        let twin = run_rung(scheme, &twin_scene, &sep, TWIN_SCALE, well, h);
+        rung.round_off_sample = match (rung.barrier_offset, twin.barrier_offset) {
+            (Some(a), Some(b)) => Some((a - b).abs()),
+            _ => None,
+        };
+        rungs.push(rung);
+        // the two finest rungs with an offset on the round-off floor: finer
+        // steps only add round-off
+        let choice = select_window(&offsets(&rungs), scale);
+        let on_floor = rungs
+            .iter()
+            .zip(&choice.dropped)
+            .filter(|(r, _)| r.barrier_offset.is_some())
+            .rev()
+            .take(2)
+            .filter(|(_, d)| **d == Some(DropReason::RoundOff))
+            .count();
+        if on_floor == 2 {
             break;
         }
     }
     let data = offsets(&rungs);
     for k in 1..rungs.len() {
-        rungs[k].local_exponent = local_order(data[k - 1], data[k]);
+        rungs[k].local_exponent = local_order(
+            (data[k - 1].h, data[k - 1].error),
+            (data[k].h, data[k].error),
+        );
     }
     let choice = select_window(&data, scale);
     for (r, d) in rungs.iter_mut().zip(&choice.dropped) {
@@ -359,25 +381,46 @@ fn judge(
     )
 }
 
-fn offsets(rungs: &[FollowingRung]) -> Vec<(f64, Option<f64>)> {
+/// The offsets as the window selection reads them, each with the round-off
+/// bound of the power law fitted to the twins' samples against the steps.
+fn offsets(rungs: &[FollowingRung]) -> Vec<RungData> {
+    let model = RoundOffModel::fit(
+        &rungs
+            .iter()
+            .filter_map(|r| Some((r.steps, r.round_off_sample?)))
+            .collect::<Vec<_>>(),
+    );
     rungs
         .iter()
-        .map(|r| (r.h, r.barrier_offset.map(f64::abs)))
+        .map(|r| RungData {
+            h: r.h,
+            error: r.barrier_offset.map(f64::abs),
+            round_off: model.map_or(0.0, |m| m.bound(r.steps)),
+        })
         .collect()
 }
 
 /// One run: from the separatrix's start until the orbit falls back or
 /// escapes, then on until it has departed from the exact separatrix (or
 /// runs away past the barrier, or the time limit).
-fn run_rung<M: Scheme>(scheme: &M, sep: &Separatrix, well: WellSpec, h: f64) -> FollowingRung {
+/// The run is taken on `scene`, which is `sep` in units `unit` times
+/// smaller; its states are brought back to `sep`'s units before anything is
+/// measured.
+fn run_rung<M: Scheme, S: Scene<1>>(
+    scheme: &M,
+    scene: &S,
+    sep: &Separatrix,
+    unit: f64,
+    well: WellSpec,
+    h: f64,
+) -> FollowingRung {
     let lambda = well.barrier_rate();
     let eb = sep.barrier();
     let alpha = well.alpha;
     let t_max = SEPARATRIX_TIME_LIMIT / well.k.sqrt();
     let max_steps = (t_max / h).ceil() as u64;
-    let start = sep.initial();
-    let mut carry = scheme.start(sep, &start, h);
-    let mut last = start;
+    let mut carry = scheme.start(scene, &scene.initial(), h);
+    let mut last = sep.initial();
     let mut out = FollowingRung {
         h,
         steps: 0,
@@ -387,6 +430,7 @@ fn run_rung<M: Scheme>(scheme: &M, sep: &Separatrix, well: WellSpec, h: f64) -> 
         predicted_time: None,
         departure: None,
         local_exponent: None,
+        round_off_sample: None,
         used: false,
         dropped: None,
     };
@@ -395,13 +439,14 @@ fn run_rung<M: Scheme>(scheme: &M, sep: &Separatrix, well: WellSpec, h: f64) -> 
     for n in 1..=max_steps {
         out.steps = n;
         let t = n as f64 * h;
-        if scheme.step(sep, &mut carry, h).is_err() {
+        if scheme.step(scene, &mut carry, h).is_err() {
             if !decided {
                 out.event = Event::Failed;
             }
             break;
         }
         let s = scheme.state(&carry, h);
+        let s = crate::state::State::new(s.q / unit, s.v / unit);
         if !s.is_finite() {
             if !decided {
                 out.event = Event::Failed;

@@ -107,20 +107,34 @@ pub fn symplecticity<M: Scheme, S: Scene<D>, const D: usize>(
         .map(|s| s.symplectic_residual)
         .fold(0.0, f64::max);
     let measured = !samples.is_empty() && residual <= SYMPLECTIC_TOLERANCE;
-    let verdict = Verdict::from_bool(!samples.is_empty() && measured == meta.symplectic);
-    let reason = if samples.is_empty() {
-        "no step could be taken".to_string()
-    } else {
-        format!(
-            "residual {residual:.2e} {} {SYMPLECTIC_TOLERANCE:e}: {}symplectic, as {}claimed",
-            if measured { "<=" } else { ">" },
-            if measured { "" } else { "not " },
-            if measured == meta.symplectic {
-                ""
-            } else {
-                "NOT "
-            },
+    // a claim of symplecticity is refuted by one map that is not; a claim
+    // that the scheme is not symplectic promises nothing (on a linear scene
+    // many non-symplectic schemes coincide with symplectic ones)
+    let (verdict, reason) = if samples.is_empty() {
+        (
+            Verdict::Inconclusive,
+            "no step could be taken: try a smaller step (SymplecticSpec::h)".to_string(),
         )
+    } else {
+        let found = format!(
+            "residual {residual:.2e} {} {SYMPLECTIC_TOLERANCE:e}",
+            if measured { "<=" } else { ">" }
+        );
+        match (meta.symplectic, measured) {
+            (true, true) => (Verdict::Pass, format!("{found}: symplectic, as claimed")),
+            (true, false) => (
+                Verdict::Fail,
+                format!("{found}: not symplectic, though claimed"),
+            ),
+            (false, false) => (Verdict::Pass, format!("{found}: not symplectic")),
+            (false, true) => (
+                Verdict::Pass,
+                format!(
+                    "{found}: symplectic on this scene, which does not refute the claim that \
+                     the scheme is not"
+                ),
+            ),
+        }
     };
     Ok(SymplecticRecord {
         scheme: meta.id,

@@ -8,11 +8,9 @@
 //!   suite's cost for the same numbers), with their force evaluations added:
 //!   counted from the metadata for an explicit scheme, and by running the
 //!   rung again on a counting scene for an implicit one, whose iterations
-//!   vary from rung to rung. The order study stops refining once its window
-//!   has settled, often well above the smallest target, so its ladder is
-//!   continued, with the same ratio and `t_end`, until the error is below the
-//!   smallest target, stops falling (round-off), or a rung would take more
-//!   than [`WORK_MAX_RUNG_STEPS`] steps;
+//!   vary from rung to rung. The order study's ladder runs down to the
+//!   round-off floor or its step cap, so it covers every target a scheme can
+//!   reach at those steps;
 //! - the **energy error on a long run**, the largest `|E - E0|/|E0|` over
 //!   [`ENERGY_PERIODS`] periods, on a ladder of its own that halves the step
 //!   from 1/8 period until the error is below the smallest target, stops
@@ -22,8 +20,8 @@
 //! between the two measured rungs that bracket it, on log-log axes, never
 //! beyond the rungs measured.
 
-use crate::ladder::{AutoLadder, LadderChoice, RungSize, auto_ratio, steps_for};
-use crate::measure::order::{OrderRecord, Reference, run_rung};
+use crate::ladder::steps_for;
+use crate::measure::order::OrderRecord;
 use crate::run::integrate;
 use crate::scene::{Counted, Scene};
 use crate::scheme::Scheme;
@@ -41,12 +39,6 @@ pub const ENERGY_PERIODS: f64 = 100.0;
 /// high-order scheme's cheapest run is not already far below the targets
 /// (a coarser start would only blow up the low-order schemes).
 pub const ENERGY_START: f64 = 1.0 / 4.0;
-
-/// The longest rung, in steps, by which the order study's ladder is
-/// continued to reach the targets (a step of 1/92682 period over 2 sqrt(2)
-/// periods): a second-order scheme gets to about 1e-8 of the orbit, and a
-/// ladder's continuation costs a fraction of a second.
-pub const WORK_MAX_RUNG_STEPS: u64 = 1 << 18;
 
 /// The energy ladder's longest run, in steps (a step of 1/5243 period over
 /// [`ENERGY_PERIODS`]): it bounds a ladder to about a million steps.
@@ -222,9 +214,10 @@ pub fn global_points<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     record: &OrderRecord,
 ) -> Vec<WorkPoint> {
     let meta = scheme.meta();
-    let mut points: Vec<WorkPoint> = record
+    record
         .rungs
         .iter()
+        .filter(|rung| rung.error.is_some() || !rung.outcome.completed())
         .map(|rung| {
             let taken = match rung.outcome {
                 crate::run::Outcome::Completed => rung.steps,
@@ -252,42 +245,7 @@ pub fn global_points<M: Scheme, S: Scene<D> + Clone, const D: usize>(
                 error: rung.error,
             }
         })
-        .collect();
-    let ratio = match record.ladder {
-        LadderChoice::Auto | LadderChoice::AutoWith(AutoLadder { ratio: None, .. }) => {
-            auto_ratio(meta.order)
-        }
-        LadderChoice::AutoWith(AutoLadder { ratio: Some(r), .. }) => r,
-        LadderChoice::Fixed(l) => l.ratio,
-    };
-    let smallest = TARGETS.iter().copied().fold(f64::INFINITY, f64::min);
-    while let [.., before, last] = points.as_slice() {
-        let (Some(e0), Some(e1)) = (before.error, last.error) else {
-            break;
-        };
-        if e1 <= smallest || e1 >= e0 {
-            break;
-        }
-        let Ok(steps) = steps_for(record.t_end, last.h * ratio) else {
-            break;
-        };
-        if steps <= last.steps || steps > WORK_MAX_RUNG_STEPS {
-            break;
-        }
-        let counted = Counted::new(scene.clone());
-        let size = RungSize {
-            h: record.t_end / steps as f64,
-            steps,
-        };
-        let (rung, _) = run_rung(scheme, &counted, record.t_end, size, Reference::Exact);
-        points.push(WorkPoint {
-            h: rung.h,
-            steps,
-            evaluations: counted.evaluations(),
-            error: rung.error,
-        });
-    }
-    points
+        .collect()
 }
 
 /// The normalisation of relative energy errors: `|E0|`, or for a scene of

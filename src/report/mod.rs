@@ -248,7 +248,7 @@ pub fn phase_table(records: &[PhaseRecord]) -> String {
             r.analytic.map_or("-".into(), |a| a.power.to_string()),
             match r.verdict {
                 Some(Verdict::Pass) => "pass".into(),
-                Some(Verdict::Fail) => format!("**FAIL**: {}", r.reason),
+                Some(v) => format!("**{}**: {}", v.name().to_uppercase(), r.reason),
                 None => "measured only".into(),
             },
         ]);
@@ -400,27 +400,33 @@ fn method() -> String {
     format!(
         "## Method\n\n\
          - **Error.** Each rung runs the scheme to `t_end` with `N` whole steps (`h = t_end / N`) \
-         and compares every step with the exact solution. The error is the phase-space distance \
-         `sqrt(|dq|^2 + |dv/w|^2)` (`w = 2 pi / period`), maximised over the trajectory; \
+         and compares it with the exact solution at every step (at {} equally spaced steps \
+         once `N` is larger). The error is the phase-space distance \
+         `sqrt(|dq|^2 + |dv/w|^2)` (`w = 2 pi / period`), maximised over those times; \
          `t_end` is 2 sqrt(2) periods, an irrational multiple, so no cancellation at a \
-         half or whole period can flatter a scheme.\n\
-         - **Ladder.** Automatic: from 1/8 of a period, halving (order <= 2) or dividing by \
-         `2^(2/p)` (higher orders), until the window is full, the error reaches the round-off \
-         floor, or a rung would need more than {} steps.\n\
-         - **Window.** Chosen from the data, never from the claimed order: rungs that blow up \
-         or whose error exceeds {} of the orbit are out; once the error stops falling (or \
-         the local order collapses below {} of the median), rungs on the round-off floor and \
-         within a factor {} of its error are out; the window is then the finest {} rungs \
-         at most whose local orders stay within 5% of the median of the finest three.\n\
+         half or whole period can flatter a scheme. A scene without an exact solution \
+         compares each rung with the same scheme at half the step.\n\
+         - **Ladder.** Automatic: `ceil(p/2)` interleaved halving ladders from 1/8 of a \
+         period, so the error falls about fourfold a rung, down to the round-off floor or \
+         until a rung would need more than {} steps.\n\
+         - **Round-off.** Every rung is run again from a start one unit of round-off away; \
+         the distance between the two runs samples its round-off, and a power law in the \
+         step count fitted to the samples bounds it. A rung is clean while that bound is at \
+         most `0.01 ln(h_prev/h) / 2` of its error, so round-off cannot move its local order \
+         by more than 0.01; finer rungs are on the floor.\n\
+         - **Window.** Chosen from the data, never from the claimed order: among the clean \
+         rungs below {} of the orbit, the finest {} at most whose local orders stay within \
+         5% of the median of the finest three. Without a window, a local order that falls \
+         below the claim at the fine end is an order reduction (a failure); anything else \
+         the data cannot decide is inconclusive, with what to change.\n\
          - **Fit.** `ln e = ln C + p ln h`, plus the error expansion's next terms \
          `b1 h/H` and `b2 (h/H)^2` where a partial F-test at 5% says the data call for them \
          (a straight line through smooth errors would turn them into bias); `p` with \
          Student's t 95% interval, widened by how far `p` moves when the window loses one or \
          two end rungs and by how far the local orders extrapolate from it.\n\n",
+        crate::measure::order::COMPARISONS,
         crate::ladder::AUTO_MAX_RUNG_STEPS,
         tolerance::ERROR_CEILING,
-        tolerance::FLOOR_FRACTION,
-        tolerance::FLOOR_MARGIN,
         tolerance::WINDOW_RUNGS,
     )
 }
@@ -502,7 +508,7 @@ pub fn order_table(records: &[&OrderRecord]) -> String {
             opt(r.fit.map(|f| f.line.slope), order),
             match r.verdict {
                 Verdict::Pass => "pass".into(),
-                Verdict::Fail => format!("**FAIL**: {}", r.reason),
+                v => format!("**{}**: {}", v.name().to_uppercase(), r.reason),
             },
         ]);
     }

@@ -8,7 +8,9 @@ mod anharmonic;
 mod counted;
 mod elliptic;
 mod harmonic;
+mod hidden;
 mod kepler;
+mod scaled;
 mod separatrix;
 mod well;
 mod well_orbit;
@@ -16,7 +18,9 @@ mod well_orbit;
 pub use anharmonic::Anharmonic;
 pub use counted::Counted;
 pub use harmonic::Harmonic;
+pub use hidden::Hidden;
 pub use kepler::{KeplerCircular, KeplerEccentric};
+pub use scaled::Scaled;
 pub use separatrix::Separatrix;
 pub use well_orbit::WellOrbit;
 
@@ -95,6 +99,44 @@ pub trait Scene<const D: usize> {
     /// can flatter a scheme.
     fn default_t_end(&self) -> f64 {
         2.0 * std::f64::consts::SQRT_2 * self.period()
+    }
+}
+
+/// A reference to a scene is the scene, so wrappers can borrow it.
+impl<S: Scene<D>, const D: usize> Scene<D> for &S {
+    fn meta(&self) -> SceneMeta {
+        (**self).meta()
+    }
+    fn initial(&self) -> State<D> {
+        (**self).initial()
+    }
+    #[inline(always)]
+    fn acceleration<R: Real>(&self, q: &SVector<R, D>) -> SVector<R, D> {
+        (**self).acceleration(q)
+    }
+    fn potential<R: Real>(&self, q: &SVector<R, D>) -> R {
+        (**self).potential(q)
+    }
+    fn period(&self) -> f64 {
+        (**self).period()
+    }
+    fn exact(&self, t: f64) -> Option<State<D>> {
+        (**self).exact(t)
+    }
+    fn energy(&self, s: &State<D>) -> f64 {
+        (**self).energy(s)
+    }
+    fn frequency(&self) -> f64 {
+        (**self).frequency()
+    }
+    fn phase_distance(&self, a: &State<D>, b: &State<D>) -> f64 {
+        (**self).phase_distance(a, b)
+    }
+    fn scale(&self) -> f64 {
+        (**self).scale()
+    }
+    fn default_t_end(&self) -> f64 {
+        (**self).default_t_end()
     }
 }
 
