@@ -386,12 +386,7 @@ fn emit<T: Serialize>(
             serde_json::to_string_pretty(record).expect("plain data serialises")
         );
     } else {
-        let mark = if verdict == Verdict::Pass {
-            "PASS"
-        } else {
-            "FAIL"
-        };
-        println!("{mark}: {text}");
+        println!("{}: {text}", verdict.name().to_uppercase());
     }
     Ok(exit_for(verdict == Verdict::Pass))
 }
@@ -553,8 +548,8 @@ fn print_order(r: &OrderRecord) {
         r.scheme, r.scene, r.scene_parameters, r.t_end, r.theoretical_order
     );
     println!(
-        "{:>4} {:>11} {:>10} {:>11} {:>11} {:>7}  status",
-        "rung", "h", "steps", "error", "final", "local"
+        "{:>4} {:>11} {:>10} {:>11} {:>11} {:>11} {:>7}  status",
+        "rung", "h", "steps", "error", "final", "round-off", "local"
     );
     for (i, g) in r.rungs.iter().enumerate() {
         let e = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.3e}"));
@@ -564,16 +559,19 @@ fn print_order(r: &OrderRecord) {
             (false, None) => "unused",
         };
         println!(
-            "{i:>4} {:>11.4e} {:>10} {:>11} {:>11} {:>7}  {status}",
+            "{i:>4} {:>11.4e} {:>10} {:>11} {:>11} {:>11} {:>7}  {status}",
             g.h,
             g.steps,
             e(g.error),
             e(g.final_error),
+            e(g.round_off_bound),
             g.local_order.map_or("-".into(), |p| format!("{p:.3}")),
         );
     }
-    let verdict = if r.passed() { "PASS" } else { "FAIL" };
-    println!("{verdict}: {}", r.reason);
+    println!("{}: {}", r.verdict.name().to_uppercase(), r.reason);
+    if let Some(advice) = &r.advice {
+        println!("to decide: {advice}");
+    }
 }
 
 fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {

@@ -42,8 +42,8 @@
 #![warn(missing_docs)]
 
 pub mod case;
-pub mod corpus;
 pub mod cli;
+pub mod corpus;
 pub mod error;
 pub mod guard;
 pub mod hard;

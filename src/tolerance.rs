@@ -140,7 +140,11 @@ pub fn order_interval(order: f64, ci95: [f64; 2]) -> [f64; 2] {
 /// `h a / 2` at the pericentre of an `e = 0.9` orbit takes over from its
 /// second-order passage error only below `h = 1.7e-6`), and a scheme more
 /// accurate than it claims is not a defect; the verdict passes and says so.
-pub fn order_verdict(theoretical: f64, measured: f64, interval: [f64; 2]) -> Result<Option<String>, String> {
+pub fn order_verdict(
+    theoretical: f64,
+    measured: f64,
+    interval: [f64; 2],
+) -> Result<Option<String>, String> {
     if interval[1] < theoretical {
         return Err(format!(
             "theoretical order {theoretical} above the measured interval [{:.4}, {:.4}]",
@@ -152,12 +156,14 @@ pub fn order_verdict(theoretical: f64, measured: f64, interval: [f64; 2]) -> Res
             "measured order {measured:.4} is more than {ORDER_TOLERANCE} below {theoretical}"
         ));
     }
-    Ok((interval[0] > theoretical && measured > theoretical + ORDER_TOLERANCE).then(|| {
-        format!(
-            "the error falls faster than the claimed order {theoretical} over these steps \
+    Ok(
+        (interval[0] > theoretical && measured > theoretical + ORDER_TOLERANCE).then(|| {
+            format!(
+                "the error falls faster than the claimed order {theoretical} over these steps \
              (more accurate than claimed, or the claimed order's term shows only at finer steps)"
-        )
-    }))
+            )
+        }),
+    )
 }
 
 /// Largest symplectic residual `max |J^T Omega J - Omega|` (in the scaled

@@ -259,10 +259,9 @@ pub fn eccentric_order<M: Scheme>(
                 ),
             }
         }
-        _ if record.verdict == super::Verdict::Fail => (
-            OrderStatus::Fail,
-            format!("{}; {cap_note}", record.reason),
-        ),
+        _ if record.verdict == super::Verdict::Fail => {
+            (OrderStatus::Fail, format!("{}; {cap_note}", record.reason))
+        }
         _ if resolved_below.is_none() => {
             let fine: Vec<f64> = rungs
                 .iter()

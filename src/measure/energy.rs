@@ -239,9 +239,9 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
         (false, false) => "a scheme neither symplectic nor symmetric",
     };
     let measured = match (class, growth_exponent) {
-        _ if !outcome.completed() => format!(
-            "{outcome}: the energy grew by {running:.2e} of E0 before"
-        ),
+        _ if !outcome.completed() => {
+            format!("{outcome}: the energy grew by {running:.2e} of E0 before")
+        }
         _ if lost_at.is_some() => format!(
             "orbit lost at t = {:.4} (escaped, or an energy error past {LOST_FRACTION} of E0 \
              that kept growing), to {running:.2e}",
@@ -255,15 +255,21 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
         (None, _) => "too few samples to fit a growth law".to_string(),
     };
     let (verdict, reason) = match class {
-        // a blow-up at this step says nothing about conservation below the
-        // scheme's stability limit
-        _ if conserves && !outcome.completed() => (
+        // a blow-up at this step, before the orbit was lost to a growing
+        // error, says nothing about conservation below the scheme's
+        // stability limit (past it even an area-preserving map grows
+        // exponentially); an orbit lost first was not conserved
+        _ if conserves && !outcome.completed() && lost_at.is_none() => (
             Verdict::Inconclusive,
             format!(
                 "{measured}; {claims} conserves energy only at stable steps: take a smaller \
                  step (EnergySpec::h), or check that the scene's period is its shortest time \
                  scale"
             ),
+        ),
+        _ if conserves && !outcome.completed() => (
+            Verdict::Fail,
+            format!("{measured}: {claims} must not drift"),
         ),
         Some(EnergyClass::Drifting) if conserves => (
             Verdict::Fail,

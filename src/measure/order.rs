@@ -46,7 +46,7 @@
 //! and what to change.
 
 use super::Verdict;
-use super::fit::{OrderFit, order_fit};
+use super::fit::{OrderFit, order_fit_with_round_off};
 use crate::error::Error;
 use crate::ladder::{AUTO_START, AutoLadder, LadderChoice, LadderEnd, per_octave, steps_for};
 use crate::run::{Outcome, integrate};
@@ -264,7 +264,7 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         None => scene.default_t_end(),
     };
     let mut record = order_at(scheme, scene, spec.ladder, t_end)?;
-    if spec.t_end.is_some() {
+    if spec.t_end.is_some() || matches!(spec.ladder, LadderChoice::Fixed(_)) {
         return Ok(record);
     }
     // The default end time could not decide: the error grows along the run
@@ -321,7 +321,9 @@ fn order_at<M: Scheme, S: Scene<D>, const D: usize>(
                 LadderChoice::AutoWith(settings) => settings,
                 _ => AutoLadder::default(),
             };
-            let m = settings.per_octave.unwrap_or_else(|| per_octave(meta.order));
+            let m = settings
+                .per_octave
+                .unwrap_or_else(|| per_octave(meta.order));
             if m == 0 {
                 return Err(Error::InvalidParameter {
                     name: "per_octave",
@@ -708,7 +710,12 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
                 .collect()
         };
         let resolved = samples(true);
-        if resolved.iter().filter(|s| s.1 > 0.0 && s.1.is_finite()).count() >= 3 {
+        if resolved
+            .iter()
+            .filter(|s| s.1 > 0.0 && s.1.is_finite())
+            .count()
+            >= 3
+        {
             RoundOffModel::fit(&resolved)
         } else {
             RoundOffModel::fit(&samples(false))
@@ -964,7 +971,11 @@ pub fn analyse(data: &[RungData], scale: f64) -> Analysis {
             .iter()
             .map(|d| (d.h, d.error.unwrap_or(f64::NAN)))
             .collect();
-        order_fit(&pts)
+        let round_off: Vec<f64> = data[a..=b]
+            .iter()
+            .map(|d| d.error.map_or(0.0, |e| d.round_off / e))
+            .collect();
+        order_fit_with_round_off(&pts, &round_off)
     });
     let trend_systematic = choice
         .window
@@ -1022,7 +1033,10 @@ pub fn local_order(coarse: (f64, Option<f64>), fine: (f64, Option<f64>)) -> Opti
 }
 
 fn local_order_of(data: &[RungData], i: usize) -> Option<f64> {
-    local_order((data[i - 1].h, data[i - 1].error), (data[i].h, data[i].error))
+    local_order(
+        (data[i - 1].h, data[i - 1].error),
+        (data[i].h, data[i].error),
+    )
 }
 
 /// The asymptotic window chosen from a ladder's data.
@@ -1069,7 +1083,9 @@ pub fn select_window(data: &[RungData], scale: f64) -> WindowChoice {
         match data.get(b) {
             Some(d) => {
                 let ratio = (data[a].h / d.h).ln();
-                let local = local_order_of(data, b).filter(|l| l.is_finite()).unwrap_or(1.0);
+                let local = local_order_of(data, b)
+                    .filter(|l| l.is_finite())
+                    .unwrap_or(1.0);
                 (ratio, local)
             }
             None => (std::f64::consts::LN_2, 1.0),
@@ -1117,13 +1133,7 @@ pub fn select_window(data: &[RungData], scale: f64) -> WindowChoice {
         dropped[a] = Some(DropReason::PreAsymptotic);
         return none(dropped, Some((a, b)));
     }
-    let median = median_of(
-        (a + 1..=b)
-            .rev()
-            .take(REFERENCE_RUNGS)
-            .map(local)
-            .collect(),
-    );
+    let median = median_of((a + 1..=b).rev().take(REFERENCE_RUNGS).map(local).collect());
     let tolerance = tolerance::plateau_tolerance(median);
     let halvings = |first: usize| (data[first].h / data[b].h).log2();
     let mut first = b;
@@ -1296,10 +1306,15 @@ fn judge(
                 "no rung resolved the motion ({unstable} unstable, {above} with errors above \
                  {ERROR_CEILING} of the orbit, down to h = {finest_h:.3e})"
             ),
-            "a correct scheme needs finer steps here: raise the step cap \
-             (AutoLadder::max_rung_steps) or shorten t_end; if the motion itself runs away, \
-             shorten t_end"
-                .into(),
+            match end {
+                LadderEnd::Fixed => "a correct scheme needs finer steps here: give the ladder \
+                                     more levels or a smaller h0, or use the automatic one"
+                    .into(),
+                _ => "a correct scheme needs finer steps here: raise the step cap \
+                      (AutoLadder::max_rung_steps) or shorten t_end; if the motion itself runs \
+                      away, shorten t_end"
+                    .into(),
+            },
         );
     }
     if clean == 0 {
@@ -1418,7 +1433,11 @@ fn order_reduction(claim: f64, rungs: &[Rung], a: usize, b: usize) -> Option<Ord
 mod tests {
     use super::*;
 
-    fn ladder(e: impl Fn(f64) -> Option<f64>, round_off: impl Fn(f64) -> f64, n: i32) -> Vec<RungData> {
+    fn ladder(
+        e: impl Fn(f64) -> Option<f64>,
+        round_off: impl Fn(f64) -> f64,
+        n: i32,
+    ) -> Vec<RungData> {
         (0..n)
             .map(|k| 0.5 / 2f64.powi(k))
             .map(|h| RungData {
@@ -1445,7 +1464,11 @@ mod tests {
         // h >= 2.4e-4, rung 11 (h = 2.44e-4) is the finest clean one
         let (_, b) = w.window.expect("a window");
         assert_eq!(b, 11, "{w:?}");
-        assert!(w.dropped[12..].iter().all(|d| *d == Some(DropReason::RoundOff)));
+        assert!(
+            w.dropped[12..]
+                .iter()
+                .all(|d| *d == Some(DropReason::RoundOff))
+        );
     }
 
     #[test]
@@ -1464,14 +1487,23 @@ mod tests {
 
     #[test]
     fn interleaved_ladders_contain_every_half_step() {
-        let steps: Vec<u64> = interleaved(23, 4).take(40).collect();
-        assert!(steps.windows(2).all(|w| w[0] < w[1]), "{steps:?}");
-        for &n in &steps[..steps.len() - 4] {
-            assert!(steps.contains(&(2 * n)), "{n}");
+        for (n0, m) in [(23, 4), (23, 8), (3, 2), (1, 4)] {
+            let steps: Vec<u64> = interleaved(n0, m).take(60).collect();
+            assert!(steps.windows(2).all(|w| w[0] < w[1]), "{steps:?}");
+            // from the first base on, the ratio is 2^(-1/m) but for the
+            // rounding of the bases to whole steps (half a step of at least
+            // 4m, each end), and every rung's half step is a rung
+            let start = (0..).map(|s| n0 << s).find(|&n| n >= 4 * m as u64).unwrap();
+            let dense: Vec<u64> = steps.iter().copied().filter(|&n| n >= start).collect();
+            let rounding = 1.0 / (4 * m) as f64;
+            for w in dense.windows(2) {
+                let ratio = w[1] as f64 / w[0] as f64 / 2f64.powf(1.0 / m as f64);
+                assert!((ratio - 1.0).abs() <= rounding, "{w:?}");
+            }
+            for &n in &dense[..dense.len() - m as usize] {
+                assert!(steps.contains(&(2 * n)), "{n} of {steps:?}");
+            }
         }
-        // a refinement to 8 a halving keeps every rung of 4
-        let finer: Vec<u64> = interleaved(23, 8).take(80).collect();
-        assert!(steps.iter().all(|n| finer.contains(n)));
     }
 
     #[test]

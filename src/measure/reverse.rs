@@ -113,7 +113,10 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
                 if measured { "<=" } else { ">" }
             );
             match (claimed, measured) {
-                (true, true) => (Verdict::Pass, format!("{found}: time-symmetric, as claimed")),
+                (true, true) => (
+                    Verdict::Pass,
+                    format!("{found}: time-symmetric, as claimed"),
+                ),
                 (true, false) => (
                     Verdict::Fail,
                     format!("{found}: not time-symmetric, though claimed"),

@@ -114,8 +114,9 @@ fn eccentric_section(hard: &HardCases) -> String {
                  pericentre a first-order error `L h` with `L = a_p/(2w) = {:.1}` in phase units, \
                  while the second-order error of the passage is `C h^2` with `C = {}` (the \
                  window's finest rung). The first-order term can dominate only below `h = L/C = \
-                 {}` (tau_p/{}), a rung of {} steps, beyond the cap; the order table's `fail` \
-                 is this, not a wrong scheme.",
+                 {}` (tau_p/{}), a rung of {} steps, beyond the cap. An order above the \
+                 claim refutes nothing, so the verdict passes; the table's order is this, not a \
+                 more accurate scheme.",
                 r.pericentre.e,
                 k.lag_coefficient,
                 sci(k.second_order_coefficient),

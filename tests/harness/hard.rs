@@ -321,7 +321,13 @@ fn an_unresolved_pericentre_is_reported_as_such() {
         assert!(r.reason.starts_with("unresolved"), "{}", r.reason);
         assert!(r.measured_order.is_none());
         let vw = r.pericentre.speed_in_phase_units;
-        for g in r.rungs.iter().filter(|g| g.h < r.pericentre.time_scale) {
+        let ceiling =
+            stepladder::tolerance::ERROR_CEILING * KeplerEccentric::new(0.99).unwrap().scale();
+        for g in r
+            .rungs
+            .iter()
+            .filter(|g| g.h < r.pericentre.time_scale && g.error.is_some_and(|e| e > ceiling))
+        {
             let e = g.error.unwrap() / vw;
             assert!(
                 (0.5..2.5).contains(&e),
@@ -539,7 +545,14 @@ fn euler_cromer_turns_first_order_below_the_predicted_step() {
         .iter()
         .find(|r| r.scheme == "euler-cromer" && r.pericentre.e == 0.9)
         .unwrap();
-    assert_eq!(r.status, OrderStatus::Fail, "{}", r.reason);
+    // second order measured where first is claimed: more accurate than
+    // claimed at these steps, which refutes nothing
+    assert_eq!(r.status, OrderStatus::Pass, "{}", r.reason);
+    assert!(
+        r.reason.contains("falls faster than the claimed order"),
+        "{}",
+        r.reason
+    );
     let k = kick_lag(r).expect("second order measured");
     let orbit = KeplerEccentric::new(0.9).unwrap();
     let largest = |steps: u64| {

@@ -3,7 +3,8 @@
 
 use proptest::prelude::*;
 use stepladder::ladder::AUTO_MAX_RUNG_STEPS;
-use stepladder::measure::order::{OrderSpec, analyse, global_order};
+use stepladder::ladder::per_octave;
+use stepladder::measure::order::{OrderSpec, RungData, analyse, global_order};
 use stepladder::measure::reverse::{ReverseSpec, reversibility};
 use stepladder::measure::tangent::step_jacobian;
 use stepladder::run::integrate;
@@ -11,7 +12,7 @@ use stepladder::scene::Harmonic;
 use stepladder::scene::Scene;
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
 use stepladder::state::State;
-use stepladder::tolerance::order_verdict;
+use stepladder::tolerance::{MIN_WINDOW_HALVINGS, clean_fraction, order_verdict};
 
 /// Cases per property: 64, or `PROPTEST_CASES` when set (to search harder).
 fn cases() -> u32 {
@@ -22,24 +23,21 @@ fn cases() -> u32 {
 }
 
 proptest! {
-    // the floor property rejects the ~7% of its draws that end at the floor's onset
+    // the floor property rejects the draws whose clean rungs cannot span a window
     #![proptest_config(ProptestConfig {
         max_global_rejects: cases().max(1024),
         ..ProptestConfig::with_cases(cases())
     })]
 
-    /// Errors `C h^p (1 + r h / h0)` plus a round-off floor `u_k f / h`, on the
-    /// automatic ladder's ratio from `h0` where the error is 3% of the orbit;
-    /// the floor's size varies from rung to rung (`u_k` in [0.5, 1.5), as the
-    /// rounding of each run differs): the window must stop above the floor
-    /// and the verdict must accept `p`. Time is in units of the run, so `f`
-    /// is a few eps and the ladder ends where the automatic one does, at
-    /// `AUTO_MAX_RUNG_STEPS` steps: finer rungs would put the "floor" at a
-    /// size round-off never reaches (above `ROUND_OFF_CEILING`). The ladder
-    /// must either reach the floor (three rungs past the step where the two
-    /// terms are equal) or end while the floor is under 1% of the error: a
-    /// ladder that ends at the floor's onset cannot tell it from a change of
-    /// regime, and the analysis then rightly finds no window.
+    /// Errors `C h^p (1 + r h / h0)` plus round-off `u_k f / h` on the
+    /// automatic ladder's ratio from `h0`, where the error is 3% of the
+    /// orbit; the round-off's size varies from rung to rung (`u_k` in [0.5,
+    /// 1.5), as each run rounds differently) and the analysis is given its
+    /// bound `1.5 f / h`, as the twins' law would give it. Time is in units of
+    /// the run, down to `AUTO_MAX_RUNG_STEPS` steps. Wherever the clean rungs
+    /// (round-off bound within `clean_fraction` of the error) span the
+    /// window's two halvings, the window must lie among them and the verdict
+    /// must accept `p`.
     #[test]
     fn window_and_fit_recover_a_power_law_above_a_floor(
         p in 1.0f64..8.0,
@@ -49,12 +47,14 @@ proptest! {
     ) {
         let c = 10f64.powf(log_c);
         let h0 = (0.03 / c).powf(1.0 / p);
-        // the automatic ladder's ratio: halving up to order 2, 2^(-2/p) beyond
-        let ratio = if p <= 2.0 { 0.5 } else { 2f64.powf(-2.0 / p) };
+        let m = per_octave(p.ceil() as u32);
+        let ratio = 2f64.powf(-1.0 / m as f64);
         let finest = 1.0 / AUTO_MAX_RUNG_STEPS as f64;
-        let equal = (floor / c).powf(1.0 / (p + 1.0));
-        prop_assume!(equal * ratio.powi(3) >= finest || floor / finest < 0.01 * c * finest.powf(p));
-        let data: Vec<(f64, Option<f64>)> = (0..60)
+        let bound = |h: f64| 1.5 * floor / h;
+        // the finest step whose round-off bound is a clean part of its error
+        let clean_below = (bound(1.0) / (clean_fraction(ratio.recip().ln(), p) * c)).powf(1.0 / (p + 1.0));
+        prop_assume!((h0 / clean_below.max(finest)).log2() > MIN_WINDOW_HALVINGS + 1.0);
+        let data: Vec<RungData> = (0..200)
             .map(|k| h0 * ratio.powi(k))
             .take_while(|&h| h >= finest)
             .enumerate()
@@ -62,7 +62,11 @@ proptest! {
                 // a pseudo-random draw per rung, independent of its neighbours
                 let bits = (k as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ p.to_bits();
                 let u = 0.5 + (bits.wrapping_mul(0xBF58_476D_1CE4_E5B9) >> 11) as f64 / (1u64 << 53) as f64;
-                (h, Some(c * h.powf(p) * (1.0 + r * h / h0) + u * floor / h))
+                RungData {
+                    h,
+                    error: Some(c * h.powf(p) * (1.0 + r * h / h0) + u * floor / h),
+                    round_off: bound(h),
+                }
             })
             .collect();
         let analysis = analyse(&data, 1.0);
@@ -70,10 +74,12 @@ proptest! {
         let (fit, interval) = (analysis.fit.expect("a fit exists"), analysis.ci95.unwrap());
         let verdict = order_verdict(p, fit.order, interval);
         prop_assert!(verdict.is_ok(), "p = {p}, {verdict:?}: {fit:?} over {a}..{b}, trend {:?}", analysis.trend_systematic);
-        let pts: Vec<(f64, f64)> = data[a..=b].iter().map(|&(h, e)| (h, e.unwrap())).collect();
-        // the last fitted rung is still well above the floor
-        let (h, e) = pts[pts.len() - 1];
-        prop_assert!(e > 10.0 * floor / h, "rung {b} at e = {e} is on the floor {}", floor / h);
+        // the last fitted rung's round-off is a clean part of its error
+        let last = data[b];
+        prop_assert!(
+            last.round_off < clean_fraction(ratio.recip().ln(), p + 1.0) * last.error.unwrap(),
+            "rung {b} at e = {:?} is on the floor {}", last.error, last.round_off
+        );
     }
 
     /// Velocity Verlet is second order on any oscillator, whatever its
