@@ -20,14 +20,18 @@ pub const SECONDS_PER_STEP: f64 = 3e-8;
 /// drops such rungs, and they cost little).
 pub const AUTO_START: f64 = 1.0 / 8.0;
 
-/// The automatic ladder's largest rung, in steps (a step of 1/741455 period
-/// over the default 2 sqrt(2) periods). With two rungs a halving and a twin
-/// for every rung, a ladder to the cap takes about `2 * 3.4 * 2^21 = 1.4e7`
-/// steps, a fraction of a second for a scene of a few flops a force. Every
-/// scheme of order two or more reaches the round-off floor well before it on
-/// the built-in scenes; a first-order scheme on a sharp pericentre may not
-/// resolve it at all, and the study then says so and how to go further.
-pub const AUTO_MAX_RUNG_STEPS: u64 = 1 << 21;
+/// The automatic ladder's largest rung, in force evaluations: `2^21`, a step
+/// of 1/741455 period over the default 2 sqrt(2) periods for a scheme of one
+/// force a step, proportionally coarser for one of more (a scheme's cost is
+/// its force evaluations). With two rungs a halving and a twin for every
+/// rung, a ladder to the cap spends about `2 * 3.4 * 2^21 = 1.4e7`
+/// evaluations, a fraction of a second for a scene of a few flops a force.
+/// Every correct scheme of order two or more reaches the round-off floor
+/// well before it on the built-in scenes; a first-order scheme on a sharp
+/// pericentre may not resolve it at all, and the study then says so and how
+/// to go further. (An implicit scheme is counted at its evaluations per
+/// iteration, a lower bound of its cost.)
+pub const AUTO_MAX_RUNG_EVALUATIONS: u64 = 1 << 21;
 
 /// Interleaved halving ladders the automatic ladder runs for a scheme that
 /// claims order `p`: `ceil(p / 2)`, a ratio `2^(-1/m)` between neighbouring
@@ -48,7 +52,7 @@ pub fn per_octave(order: u32) -> u32 {
 pub enum LadderChoice {
     /// Chosen from the scheme and the data: [`per_octave`] interleaved
     /// halving ladders from [`AUTO_START`] periods, down to the round-off
-    /// floor or until a rung would exceed [`AUTO_MAX_RUNG_STEPS`].
+    /// floor or until a rung would exceed [`AUTO_MAX_RUNG_EVALUATIONS`].
     Auto,
     /// The automatic ladder with another density of rungs or step cap.
     AutoWith(AutoLadder),
@@ -62,15 +66,16 @@ pub struct AutoLadder {
     /// Rungs per halving of the step (interleaved halving ladders); `None`
     /// for [`per_octave`] of the claimed order.
     pub per_octave: Option<u32>,
-    /// The largest rung, in steps.
-    pub max_rung_steps: u64,
+    /// The largest rung, in force evaluations (steps times the scheme's
+    /// evaluations a step).
+    pub max_rung_evaluations: u64,
 }
 
 impl Default for AutoLadder {
     fn default() -> Self {
         Self {
             per_octave: None,
-            max_rung_steps: AUTO_MAX_RUNG_STEPS,
+            max_rung_evaluations: AUTO_MAX_RUNG_EVALUATIONS,
         }
     }
 }

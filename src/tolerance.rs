@@ -166,12 +166,16 @@ pub fn order_verdict(
     )
 }
 
-/// Largest symplectic residual `max |J^T Omega J - Omega|` (in the scaled
-/// coordinates `(q, v / w)`, where `J` has entries of order one) that counts
-/// as round-off. A step of `s` stages rounds each entry of `J` at about
-/// `s eps`, 1e-15 to 1e-14 for the catalogue; 1e-12 leaves a factor of 100,
-/// and the smallest defect of a non-symplectic scheme at the default steps
-/// (RK4 at `h w = 2 pi / 100`: `z^6 / 72 = 8.6e-10`) is a thousand times larger.
+/// Largest symplectic residual `max |J^T Omega J - Omega| / max(1, max
+/// |J_ij|^2)` (in the scaled coordinates `(q, v / w)`) that counts as
+/// round-off. A step of `s` stages rounds each entry of `J` at about `s eps`
+/// of the largest, and each entry of `J^T Omega J` sums `2D` products of
+/// two of them, so its round-off is about `4 D s eps max|J|^2`: relative to
+/// `max|J|^2` (which is 1 where the step hardly deforms phase space, and
+/// hundreds through a pericentre taken in a few steps), 1e-15 to 1e-14 for
+/// the catalogue; 1e-12 leaves a factor of 100, and the smallest defect of
+/// a non-symplectic scheme at the default steps (RK4 at `h w = 2 pi / 100`:
+/// `z^6 / 72 = 8.6e-10`) is a thousand times larger.
 pub const SYMPLECTIC_TOLERANCE: f64 = 1e-12;
 
 /// Largest return error, in units of `eps * scale`, that counts as round-off

@@ -18,9 +18,13 @@
 
 pub mod broken;
 pub mod correct;
+mod pairs;
 pub mod scenes;
 
+pub use pairs::{broken as broken_pairs, correct as correct_pairs, entries};
+
 use crate::case::{Bound, Case};
+use crate::measure::Verdict;
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use serde::Serialize;
@@ -155,5 +159,172 @@ impl Entry {
             why,
             case: Box::new(Bound::<M, S, D> { scheme, scene }),
         }
+    }
+}
+
+/// The four claims a corpus entry is judged on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Claim {
+    /// The global order.
+    Order,
+    /// No secular energy drift (symplectic or symmetric), or none promised.
+    Energy,
+    /// Symplecticity of the one-step map.
+    Symplectic,
+    /// Time symmetry.
+    Reversible,
+}
+
+impl Claim {
+    /// Every claim, in the order of [`Expected`]'s fields.
+    pub const ALL: [Claim; 4] = [
+        Claim::Order,
+        Claim::Energy,
+        Claim::Symplectic,
+        Claim::Reversible,
+    ];
+
+    /// The kebab-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Claim::Order => "order",
+            Claim::Energy => "energy",
+            Claim::Symplectic => "symplectic",
+            Claim::Reversible => "reversible",
+        }
+    }
+}
+
+impl Expected {
+    /// What `claim` must get.
+    pub fn of(&self, claim: Claim) -> Expect {
+        match claim {
+            Claim::Order => self.order,
+            Claim::Energy => self.energy,
+            Claim::Symplectic => self.symplectic,
+            Claim::Reversible => self.reversible,
+        }
+    }
+}
+
+/// One claim of one entry, as judged.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Judged {
+    /// The claim.
+    pub claim: Claim,
+    /// What it must get.
+    pub expected: Expect,
+    /// What it got.
+    pub verdict: Verdict,
+    /// The study's reason.
+    pub reason: String,
+}
+
+impl Judged {
+    /// The verdict is the one expected (`Any` accepts every verdict).
+    pub fn right(&self) -> bool {
+        match self.expected {
+            Expect::Any => true,
+            Expect::Pass => self.verdict == Verdict::Pass,
+            Expect::Fail => self.verdict == Verdict::Fail,
+            Expect::Inconclusive => self.verdict == Verdict::Inconclusive,
+        }
+    }
+}
+
+/// An entry's outcome.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Outcome {
+    /// Scheme id.
+    pub scheme: &'static str,
+    /// Scene id and parameters.
+    pub scene: String,
+    /// Correct or broken.
+    pub truth: Truth,
+    /// Why the expectations are what they are.
+    pub why: &'static str,
+    /// Every judged claim (those expected `Any` are run too, and shown).
+    pub claims: Vec<Judged>,
+}
+
+impl Outcome {
+    /// Every claim got its expected verdict.
+    pub fn right(&self) -> bool {
+        self.claims.iter().all(Judged::right)
+    }
+}
+
+/// Runs every study of `entry` and judges its claims.
+pub fn judge(entry: &Entry) -> Result<Outcome, crate::error::Error> {
+    use crate::measure::energy::EnergySpec;
+    use crate::measure::order::OrderSpec;
+    use crate::measure::reverse::ReverseSpec;
+    use crate::measure::symplectic::SymplecticSpec;
+    let c = &entry.case;
+    let order = c.order(&OrderSpec::default())?;
+    let energy = c.energy(&EnergySpec::default())?;
+    let symplectic = c.symplectic(&SymplecticSpec::default())?;
+    let reverse = c.reverse(&ReverseSpec::default())?;
+    let verdicts = [
+        (order.verdict, order.reason),
+        (energy.verdict, energy.reason),
+        (symplectic.verdict, symplectic.reason),
+        (reverse.verdict, reverse.reason),
+    ];
+    let scene = c.scene();
+    Ok(Outcome {
+        scheme: c.scheme().id,
+        scene: format!("{} ({})", scene.id, scene.parameters),
+        truth: entry.truth,
+        why: entry.why,
+        claims: Claim::ALL
+            .iter()
+            .zip(verdicts)
+            .map(|(&claim, (verdict, reason))| Judged {
+                claim,
+                expected: entry.expected.of(claim),
+                verdict,
+                reason,
+            })
+            .collect(),
+    })
+}
+
+/// The corpus read as a classifier's test set: a correct pair is a *correct
+/// pass* when every claim gets its expected verdict and a *false alarm*
+/// otherwise; a broken pair is *caught* when every claim gets its expected
+/// verdict (the broken claim refuted, the others as expected) and *missed*
+/// otherwise.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Confusion {
+    /// Correct pairs judged as expected.
+    pub correct_pass: usize,
+    /// Correct pairs with a wrong verdict.
+    pub false_alarm: usize,
+    /// Broken pairs judged as expected.
+    pub broken_caught: usize,
+    /// Broken pairs with a wrong verdict.
+    pub missed: usize,
+}
+
+impl Confusion {
+    /// The matrix of these outcomes.
+    pub fn of(outcomes: &[Outcome]) -> Self {
+        let mut c = Confusion::default();
+        for o in outcomes {
+            match (o.truth, o.right()) {
+                (Truth::Correct, true) => c.correct_pass += 1,
+                (Truth::Correct, false) => c.false_alarm += 1,
+                (Truth::Broken, true) => c.broken_caught += 1,
+                (Truth::Broken, false) => c.missed += 1,
+            }
+        }
+        c
+    }
+
+    /// Wrong verdicts.
+    pub fn wrong(&self) -> usize {
+        self.false_alarm + self.missed
     }
 }

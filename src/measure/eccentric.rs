@@ -176,7 +176,7 @@ pub fn eccentric_order<M: Scheme>(
         t_end: Some(t_end),
         ladder: LadderChoice::AutoWith(AutoLadder {
             per_octave: (meta.order <= 2).then_some(ECCENTRIC_LOW_ORDER_PER_OCTAVE),
-            max_rung_steps,
+            max_rung_evaluations: max_rung_steps * u64::from(meta.force_evaluations.max(1)),
         }),
     };
     let record = global_order(scheme, &orbit, &spec)?;

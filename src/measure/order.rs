@@ -145,12 +145,13 @@ pub struct Rung {
     pub outcome: Outcome,
 }
 
-/// A fall of the local order at the fine end of the clean rungs.
+/// A fall of the local order below the claim at the fine end of the clean
+/// rungs.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct OrderReduction {
     /// The order the local orders fell from (the claim they reached).
     pub from: f64,
-    /// The local order at the finest clean rung.
+    /// The limit the finest local orders are heading for (at most).
     pub to: f64,
     /// The largest step at which the local order has left `from`'s plateau.
     pub sets_in_at: f64,
@@ -332,9 +333,11 @@ fn order_at<M: Scheme, S: Scene<D>, const D: usize>(
                 });
             }
             let n0 = steps_for(t_end, AUTO_START * scene.period())?;
-            let end = lab.climb(n0, m, settings.max_rung_steps)?;
+            // the cap is in force evaluations: a scheme's cost
+            let cap = settings.max_rung_evaluations / u64::from(meta.force_evaluations.max(1));
+            let end = lab.climb(n0, m, cap)?;
             lab.complete_references()?;
-            let (m, refined) = lab.refine(n0, m, settings.max_rung_steps)?;
+            let (m, refined) = lab.refine(n0, m, cap)?;
             (end, Some(m), refined)
         }
     };
@@ -1262,7 +1265,7 @@ fn judge(
             Err(why) => {
                 let fell = reduction.map_or(String::new(), |r| {
                     format!(
-                        "; the local order falls from {:.2} to {:.2} below h = {:.3e} (order reduction)",
+                        "; the local order falls from {:.2} towards {:.2} below h = {:.3e} (order reduction)",
                         r.from, r.to, r.sets_in_at
                     )
                 });
@@ -1273,7 +1276,7 @@ fn judge(
     if let Some(r) = reduction {
         return fail(
             format!(
-                "order reduction: the local order falls from {:.2} to {:.2} below h = {:.3e}, \
+                "order reduction: the local order falls from {:.2} towards {:.2} below h = {:.3e}, \
                  under the claimed {claim} ({end_note})",
                 r.from, r.to, r.sets_in_at
             ),
@@ -1311,7 +1314,7 @@ fn judge(
                                      more levels or a smaller h0, or use the automatic one"
                     .into(),
                 _ => "a correct scheme needs finer steps here: raise the step cap \
-                      (AutoLadder::max_rung_steps) or shorten t_end; if the motion itself runs \
+                      (AutoLadder::max_rung_evaluations) or shorten t_end; if the motion itself runs \
                       away, shorten t_end"
                     .into(),
             },
@@ -1342,7 +1345,7 @@ fn judge(
     let advice = match end {
         LadderEnd::Cap => {
             "the local order was still moving when the ladder reached its step cap: raise the \
-             cap (AutoLadder::max_rung_steps) or shorten t_end"
+             cap (AutoLadder::max_rung_evaluations) or shorten t_end"
         }
         LadderEnd::Floor => {
             "round-off leaves too few clean rungs above it: shorten t_end, which lowers the \
@@ -1387,19 +1390,16 @@ fn converges_elsewhere(rungs: &[Rung], scale: f64) -> Option<String> {
     })
 }
 
-/// A systematic fall of the local order below the claim at the fine end of
-/// the clean rungs `a..=b`: the local orders reached the claim (two in a row
-/// within the plateau tolerance of it), and from there to the finest rung
-/// they fall, never rising by more than half the plateau tolerance (what
-/// round-off may move them), to end with [`REFERENCE_RUNGS`] of them more
-/// than the plateau tolerance and [`ORDER_TOLERANCE`] below it.
+/// An order reduction at the fine end of the clean rungs `a..=b`: the local
+/// orders reached the claim (two in a row within the plateau tolerance of
+/// it), and the finest [`REFERENCE_RUNGS`] of them lie more than the plateau
+/// tolerance and [`ORDER_TOLERANCE`] below it, converging to a limit below
+/// it too (see [`local_order_limit`]).
 ///
 /// A correct scheme's local order tends to its order as `h -> 0`, from above
-/// or below, so it does not fall away below it at the finest steps. What it
-/// can do is pass close to a cancellation of its leading error term, where
-/// its local order shoots up and then drops below its order before rising
-/// back; that pattern starts above the claim, not on it, and is not taken
-/// for a reduction (the study is then inconclusive at worst).
+/// or below. Past a cancellation of its leading error term it can lie far
+/// below it for a while, but rising back towards it; what it does not do is
+/// settle below it. The limit tells the two apart.
 fn order_reduction(claim: f64, rungs: &[Rung], a: usize, b: usize) -> Option<OrderReduction> {
     let locals: Vec<(usize, f64)> = (a + 1..=b)
         .filter_map(|i| Some((i, rungs[i].local_order?)))
@@ -1414,19 +1414,45 @@ fn order_reduction(claim: f64, rungs: &[Rung], a: usize, b: usize) -> Option<Ord
     if tail.len() <= REFERENCE_RUNGS {
         return None;
     }
-    let systematic = tail.windows(2).all(|w| w[1].1 <= w[0].1 + tolerance / 2.0);
-    let below = tail[tail.len() - REFERENCE_RUNGS..]
+    let fine: Vec<f64> = tail[tail.len() - REFERENCE_RUNGS..]
         .iter()
-        .all(|&(_, l)| l < claim - tolerance.max(ORDER_TOLERANCE));
-    if !(systematic && below) {
+        .map(|&(_, l)| l)
+        .collect();
+    let below = |l: f64| l < claim - tolerance.max(ORDER_TOLERANCE);
+    let limit = local_order_limit(&fine)?;
+    if !(fine.iter().all(|&l| below(l)) && below(limit)) {
         return None;
     }
     let (first_off, _) = tail.iter().copied().find(|&(_, l)| !on_claim(l))?;
     Some(OrderReduction {
         from: claim,
-        to: tail.last()?.1,
+        to: limit,
         sets_in_at: rungs[first_off - 1].h,
     })
+}
+
+/// Where three successive local orders `l1, l2, l3` (coarse to fine) are
+/// heading, when the data say: their common value if they agree to within
+/// half the plateau tolerance (what round-off may move each); the limit of
+/// the geometric sequence they start if their steps shrink with one sign
+/// (`l3 + d2 r / (1 - r)`, `r = d2 / d1`: Aitken's extrapolation, exact for
+/// a local order `L + c h^s` on a ladder of constant ratio); at most `l3` if
+/// they fall faster and faster. Otherwise `None`: rising ever faster, or
+/// wobbling, they could be heading anywhere.
+pub fn local_order_limit(fine: &[f64]) -> Option<f64> {
+    let [l1, l2, l3] = *fine else {
+        return None;
+    };
+    let (d1, d2) = (l2 - l1, l3 - l2);
+    let half = tolerance::plateau_tolerance(l3) / 2.0;
+    if d1.abs() <= half && d2.abs() <= half {
+        return Some(median_of(fine.to_vec()));
+    }
+    if d1 * d2 > 0.0 && d2.abs() < d1.abs() {
+        let r = d2 / d1;
+        return Some(l3 + d2 * r / (1.0 - r));
+    }
+    (d1 <= 0.0 && d2 <= 0.0).then_some(l3)
 }
 
 #[cfg(test)]

@@ -11,7 +11,8 @@
 //! initial step-size guess). Output is requested at the steps it takes, not
 //! interpolated, so no evaluation is spent on dense output.
 
-use super::work::{TargetCost, WorkPoint, energy_norm, targets_of};
+use super::energy::energy_norm;
+use super::work::{TargetCost, WorkPoint, targets_of};
 use crate::scene::Scene;
 use crate::state::State;
 use ode_solvers::{Dop853, OutputType, SVector, System};

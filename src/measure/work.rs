@@ -21,6 +21,7 @@
 //! beyond the rungs measured.
 
 use crate::ladder::steps_for;
+use crate::measure::energy::energy_norm;
 use crate::measure::order::OrderRecord;
 use crate::run::integrate;
 use crate::scene::{Counted, Scene};
@@ -246,17 +247,6 @@ pub fn global_points<M: Scheme, S: Scene<D> + Clone, const D: usize>(
             }
         })
         .collect()
-}
-
-/// The normalisation of relative energy errors: `|E0|`, or for a scene of
-/// zero energy its kinetic energy scale (as the energy study).
-pub fn energy_norm<S: Scene<D>, const D: usize>(scene: &S) -> f64 {
-    let e0 = scene.energy(&scene.initial());
-    if e0 != 0.0 {
-        e0.abs()
-    } else {
-        0.5 * (scene.frequency() * scene.scale()).powi(2)
-    }
 }
 
 /// The largest relative energy error of one run of `steps` steps of `h`,

@@ -408,7 +408,7 @@ fn method() -> String {
          compares each rung with the same scheme at half the step.\n\
          - **Ladder.** Automatic: `ceil(p/2)` interleaved halving ladders from 1/8 of a \
          period, so the error falls about fourfold a rung, down to the round-off floor or \
-         until a rung would need more than {} steps.\n\
+         until a rung would need more than {} force evaluations.\n\
          - **Round-off.** Every rung is run again from a start one unit of round-off away; \
          the distance between the two runs samples its round-off, and a power law in the \
          step count fitted to the samples bounds it. A rung is clean while that bound is at \
@@ -425,7 +425,7 @@ fn method() -> String {
          Student's t 95% interval, widened by how far `p` moves when the window loses one or \
          two end rungs and by how far the local orders extrapolate from it.\n\n",
         crate::measure::order::COMPARISONS,
-        crate::ladder::AUTO_MAX_RUNG_STEPS,
+        crate::ladder::AUTO_MAX_RUNG_EVALUATIONS,
         tolerance::ERROR_CEILING,
         tolerance::WINDOW_RUNGS,
     )
