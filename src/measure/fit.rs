@@ -118,20 +118,27 @@ pub fn order_fit_with_round_off(points: &[(f64, f64)], round_off: &[f64]) -> Opt
     .filter_map(|sub| expansion(sub, &chosen))
     .map(|sub| (sub.order - fit.order).abs())
     .fold(0.0, f64::max);
-    // the model's systematic: where both corrections fit significantly
-    // better than the line, the data cannot tell which next term of the
-    // expansion they show, and `p` depends on the choice
-    let model = significant
-        .iter()
-        .map(|(_, f)| (f.order - fit.order).abs())
+    // how far the round-off each point may carry (its bound, a fraction of
+    // its error) can move a fit's order: the leverages times the bounds
+    let rounding = |f: &Expansion| -> f64 {
+        f.weights
+            .iter()
+            .zip(round_off)
+            .map(|(w, r)| w.abs() * r / (1.0 - r.min(0.5)))
+            .sum()
+    };
+    // the model's systematic: the next term of the expansion is there in
+    // every error, whether or not the window's scatter lets an F-test see
+    // it, and `p` depends on whether (and which) term is fitted. Each
+    // alternative is itself moved by round-off, the more so as a correction
+    // raises the end points' leverage, so its own rounding bound counts too.
+    let model = [Correction::Linear, Correction::Quadratic]
+        .into_iter()
+        .filter_map(|c| expansion(points, &[c]))
+        .chain(std::iter::once(plain.clone()))
+        .map(|f| (f.order - fit.order).abs() + rounding(&f))
         .fold(0.0, f64::max);
-    let rounding: f64 = fit
-        .weights
-        .iter()
-        .zip(round_off)
-        .map(|(w, f)| w.abs() * f / (1.0 - f.min(0.5)))
-        .sum();
-    let systematic = window.max(model) + rounding;
+    let systematic = (window + rounding(fit)).max(model);
     let half = t_quantile * fit.standard_error + systematic;
     let mut corrections = [None; MAX_CORRECTIONS];
     for (slot, c) in corrections.iter_mut().zip(&chosen) {
@@ -150,6 +157,7 @@ pub fn order_fit_with_round_off(points: &[(f64, f64)], round_off: &[f64]) -> Opt
 }
 
 /// One least-squares fit of the expansion.
+#[derive(Clone)]
 struct Expansion {
     order: f64,
     standard_error: f64,

@@ -396,7 +396,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
     fn run(&self, steps: u64) -> (Outcome, Vec<State<D>>, Vec<State<D>>) {
         let (start, h) = (self.scene.initial(), self.t_end / steps as f64);
         let mut own_at = comparison_steps(steps).peekable();
-        let coarser = (steps % 2 == 0).then_some(steps / 2);
+        let coarser = steps.is_multiple_of(2).then_some(steps / 2);
         let mut coarser_at = coarser
             .into_iter()
             .flat_map(|c| comparison_steps(c).map(|n| 2 * n))
@@ -1148,9 +1148,9 @@ pub fn select_window(data: &[RungData], scale: f64) -> WindowChoice {
     }
     let window = (b + 1 - first >= MIN_WINDOW && halvings(first) >= MIN_WINDOW_HALVINGS)
         .then_some((first, b));
-    for i in a..first {
+    for (i, slot) in dropped.iter_mut().enumerate().take(first).skip(a) {
         let strays = (local(i + 1) - median).abs() > tolerance;
-        dropped[i] = Some(if strays || window.is_none() {
+        *slot = Some(if strays || window.is_none() {
             DropReason::PreAsymptotic
         } else {
             DropReason::NotNeeded
