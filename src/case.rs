@@ -8,7 +8,7 @@ use crate::measure::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::measure::order::{OrderRecord, OrderSpec, global_order};
 use crate::measure::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
-use crate::scene::{AnyScene, Scene, SceneMeta, SceneVisitor};
+use crate::scene::{AnyScene, Hidden, Scene, SceneMeta, SceneVisitor};
 use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor};
 
 /// The studies that can be run on a scheme bound to a scene.
@@ -19,6 +19,9 @@ pub trait Case: Send + Sync {
     fn scene(&self) -> SceneMeta;
     /// The global order study.
     fn order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error>;
+    /// The global order study with the scene's exact solution withheld
+    /// ([`crate::scene::Hidden`]): errors against the half-step run.
+    fn hidden_order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error>;
     /// The long-run energy study.
     fn energy(&self, spec: &EnergySpec) -> Result<EnergyRecord, Error>;
     /// The tangent-map study.
@@ -49,6 +52,9 @@ where
     }
     fn order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error> {
         global_order(self.scheme, &self.scene, spec)
+    }
+    fn hidden_order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error> {
+        global_order(self.scheme, &Hidden(&self.scene), spec)
     }
     fn energy(&self, spec: &EnergySpec) -> Result<EnergyRecord, Error> {
         energy_drift(self.scheme, &self.scene, spec)

@@ -49,6 +49,7 @@ pub mod guard;
 pub mod hard;
 pub mod ladder;
 pub mod measure;
+pub mod parallel;
 pub mod report;
 pub mod roundoff_suite;
 pub mod run;

@@ -14,10 +14,9 @@ use crate::measure::scene_check::{SceneCheck, check_scene};
 use crate::measure::stability::{StabilityRecord, stability};
 use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec};
 use crate::measure::trajectory::{TrajectoryRecord, earth_sun_experiments};
+pub use crate::parallel::{default_threads, parallel_map};
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 /// Every record of one scheme on one scene.
@@ -25,6 +24,9 @@ use std::time::{Duration, Instant};
 pub struct CaseRecords {
     /// Global order.
     pub order: OrderRecord,
+    /// Global order with the exact solution withheld: the twin of `order`,
+    /// measured against half-step runs.
+    pub hidden_order: OrderRecord,
     /// Energy over a long run.
     pub energy: EnergyRecord,
     /// Tangent map.
@@ -53,6 +55,9 @@ pub struct SuiteRecords {
     pub roundoff: crate::roundoff_suite::RoundoffRecords,
     /// The hard cases: eccentric orbits, the separatrix, escape or trapped.
     pub hard: HardCases,
+    /// The verdict corpus: schemes and scenes outside the catalogue, each
+    /// judged against the verdicts it must get.
+    pub corpus: Vec<crate::corpus::Outcome>,
     /// The work-precision study, one record per scene.
     pub work: Vec<crate::work::WorkRecord>,
     /// Its wall times, one per scene (machine-dependent).
@@ -111,45 +116,12 @@ pub fn run_case(c: &dyn Case) -> Result<CaseRecords, Error> {
     let t = Instant::now();
     Ok(CaseRecords {
         order: c.order(&OrderSpec::default())?,
+        hidden_order: c.hidden_order(&OrderSpec::default())?,
         energy: c.energy(&EnergySpec::default())?,
         symplectic: c.symplectic(&SymplecticSpec::default())?,
         reverse: c.reverse(&ReverseSpec::default())?,
         time: t.elapsed(),
     })
-}
-
-/// `f` on every item on `threads` scoped threads (at least one), results in
-/// item order whatever the thread count or the order of completion;
-/// `finished(done)` is called as each item completes.
-pub fn parallel_map<T: Sync, U: Send>(
-    items: &[T],
-    threads: usize,
-    f: impl Fn(&T) -> U + Sync,
-    finished: &(dyn Fn(usize, &T) + Sync),
-) -> Vec<U> {
-    let slots: Vec<Mutex<Option<U>>> = items.iter().map(|_| Mutex::new(None)).collect();
-    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
-    std::thread::scope(|scope| {
-        for _ in 0..threads.clamp(1, items.len().max(1)) {
-            scope.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(item) = items.get(i) else { break };
-                    let result = f(item);
-                    *slots[i].lock().expect("no panics while holding the lock") = Some(result);
-                    finished(done.fetch_add(1, Ordering::Relaxed) + 1, item);
-                }
-            });
-        }
-    });
-    slots
-        .into_iter()
-        .map(|slot| {
-            slot.into_inner()
-                .expect("no poisoned lock")
-                .expect("every item ran")
-        })
-        .collect()
 }
 
 /// Runs the suite on `threads` threads (at least one), calling
@@ -173,6 +145,7 @@ pub fn run_suite(
         .unzip();
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
     let hard = run_hard_jobs(hard_jobs(), threads)?;
+    let corpus = crate::corpus::judge_all(&crate::corpus::entries(), threads)?;
     let roundoff = crate::roundoff_suite::run_roundoff_suite(threads)?;
     let (work, work_timing, speed) = speed_against_error(&cases, threads);
     Ok(SuiteRecords {
@@ -183,6 +156,7 @@ pub fn run_suite(
         earth_sun: earth_sun_experiments(),
         roundoff,
         hard,
+        corpus,
         work,
         work_timing,
         speed,
@@ -239,9 +213,4 @@ impl SceneVisitor for CheckOf {
     ) -> SceneCheck {
         check_scene(scene)
     }
-}
-
-/// Threads to use by default: what the machine offers.
-pub fn default_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get())
 }
