@@ -81,6 +81,17 @@ enum Command {
     /// Time a step of every scheme on the circular orbit against a
     /// hand-written velocity Verlet loop on plain f64 (machine-dependent).
     Speed(SpeedArgs),
+    /// Judge the verdict corpus: schemes and scenes outside the catalogue,
+    /// each with the verdicts it must get; print the confusion matrix (exit
+    /// status 1 when any verdict is wrong).
+    Corpus {
+        /// Worker threads (default: every core); results do not depend on it.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Print every outcome as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Error against cost on one scene: force evaluations and wall time each
     /// scheme (and the ode_solvers Dop853 peer) needs to reach target errors.
     Work(WorkArgs),
@@ -312,6 +323,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         }
         Command::Speed(a) => speed(&a),
         Command::Work(a) => work(&a),
+        Command::Corpus { threads, json } => corpus(threads, json),
         Command::Energy(a) => {
             let r = a.case.case()?.energy(&EnergySpec {
                 h: a.h,
@@ -399,6 +411,7 @@ fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
             expected: "at least 1",
         });
     }
+    report::check_writable(&args.output)?;
     let show = std::io::stderr().is_terminal();
     let records = run_suite(
         args.threads.unwrap_or_else(default_threads),
@@ -532,6 +545,37 @@ fn order(args: &OrderArgs) -> Result<ExitCode, Error> {
         print_order(&record);
     }
     Ok(exit_for(record.passed()))
+}
+
+fn corpus(threads: Option<usize>, json: bool) -> Result<ExitCode, Error> {
+    use crate::corpus::{Confusion, entries, judge_all};
+    if threads == Some(0) {
+        return Err(Error::InvalidParameter {
+            name: "threads",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    let outcomes = judge_all(&entries(), threads.unwrap_or_else(default_threads))?;
+    let matrix = Confusion::of(&outcomes);
+    if json {
+        #[derive(Serialize)]
+        struct CorpusJson<'a> {
+            confusion: Confusion,
+            outcomes: &'a [crate::corpus::Outcome],
+        }
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&CorpusJson {
+                confusion: matrix,
+                outcomes: &outcomes,
+            })
+            .expect("records serialise")
+        );
+    } else {
+        print!("{}", report::corpus_section(&outcomes));
+    }
+    Ok(exit_for(matrix.wrong() == 0))
 }
 
 fn exit_for(passed: bool) -> ExitCode {

@@ -18,6 +18,7 @@
 
 pub mod broken;
 pub mod correct;
+pub mod held_out;
 mod pairs;
 pub mod scenes;
 
@@ -289,6 +290,13 @@ pub fn judge(entry: &Entry) -> Result<Outcome, crate::error::Error> {
             })
             .collect(),
     })
+}
+
+/// Judges every entry on `threads` threads, outcomes in entry order.
+pub fn judge_all(entries: &[Entry], threads: usize) -> Result<Vec<Outcome>, crate::error::Error> {
+    crate::parallel::parallel_map(entries, threads, judge, &|_, _| {})
+        .into_iter()
+        .collect()
 }
 
 /// The corpus read as a classifier's test set: a correct pair is a *correct

@@ -534,9 +534,11 @@ pub fn broken() -> Vec<Entry> {
     ]
 }
 
-/// Every pair: the correct ones, then the broken ones.
+/// Every pair: the correct ones, then the broken ones, then the held-out
+/// batch (written apart from the harness's rules, see [`super::held_out`]).
 pub fn entries() -> Vec<Entry> {
     let mut all = correct();
     all.extend(broken());
+    all.extend(super::held_out::entries());
     all
 }

@@ -70,15 +70,30 @@ pub fn deterministic(records: &SuiteRecords) -> String {
     let order = records.order();
     let _ = writeln!(
         out,
-        "`fit -+` is the half-width of the fit's 95% interval (Student's t on the standard \
-         error, plus the window systematic); the interval shown is at least -+{} around the \
-         estimate, and the verdict needs the theoretical order inside it and within {} of the \
-         estimate. The window lists the rungs fitted and their step sizes; the straight-line \
-         slope over the same rungs is shown for comparison.\n",
+        "Each ladder halves the step (with intermediate rungs for high orders) from a \
+         starting step down to the round-off floor, which a twin run in units scaled by \
+         `1 + 2^-20` measures, or to a cap of force evaluations. Errors are against the exact \
+         solution where the scene has one, otherwise against the run with half the step. \
+         The order is fitted on the finest window of rungs whose local orders agree (a \
+         plateau) and whose errors stand clear of round-off. `fit -+` is the half-width of \
+         the fit's 95% interval (Student's t on the standard error, plus the window \
+         systematic and the round-off bound's leverage); the interval shown is at least -+{} \
+         around the estimate. A claimed order is refuted when the whole interval lies below \
+         it, when the estimate is more than {} below it, or when the local order falls below \
+         it at the fine end of the ladder (order reduction); a faster fall passes, with a \
+         note. When the data cannot decide, the verdict is inconclusive and says what to \
+         change. The straight-line slope over the window is shown for comparison.\n",
         tolerance::ORDER_RESOLUTION,
         tolerance::ORDER_TOLERANCE,
     );
     out.push_str(&order_table(&order));
+    out.push_str("\n### Exact solution withheld\n\n");
+    out.push_str(
+        "Every case again with the scene's exact solution hidden from the harness, errors \
+         measured against the run with half the step: the verdict must be the same and the \
+         order inside the exact run's interval.\n\n",
+    );
+    out.push_str(&twin_table(&records.cases));
     out.push_str("\n## Geometry\n\n");
     out.push_str(&geometry_method());
     out.push_str(&geometry_table(&records.cases));
@@ -89,6 +104,8 @@ pub fn deterministic(records: &SuiteRecords) -> String {
          error stands above round-off, beside the leading term derived by hand.\n\n",
     );
     out.push_str(&phase_table(&records.phase));
+    out.push_str("\n## Verdict corpus\n\n");
+    out.push_str(&corpus_section(&records.corpus));
     out.push_str("\n## Linear stability\n\n");
     out.push_str(
         "The largest `z = h w0` up to which the one-step map on the oscillator stays \
@@ -515,6 +532,103 @@ pub fn order_table(records: &[&OrderRecord]) -> String {
     t.render()
 }
 
+/// Exact and hidden twins side by side.
+pub fn twin_table(cases: &[CaseRecords]) -> String {
+    let mut t = Table::new(&[
+        "scheme",
+        "scene",
+        "exact: order [interval]",
+        "hidden: order [interval]",
+        "verdicts",
+        "hidden inside exact interval",
+    ]);
+    let cell = |r: &OrderRecord| match (r.measured_order, r.ci95) {
+        (Some(p), Some([lo, hi])) => format!("{} [{}, {}]", order(p), order(lo), order(hi)),
+        _ => "-".into(),
+    };
+    for c in cases {
+        let (e, h) = (&c.order, &c.hidden_order);
+        let inside = match (e.ci95, h.measured_order) {
+            (Some([lo, hi]), Some(p)) => yes_no(lo <= p && p <= hi).to_string(),
+            _ => "-".into(),
+        };
+        t.row(vec![
+            format!("`{}`", e.scheme),
+            format!("`{}`", e.scene),
+            cell(e),
+            cell(h),
+            if e.verdict == h.verdict {
+                format!("both {}", e.verdict.name())
+            } else {
+                format!("**{} / {}**", e.verdict.name(), h.verdict.name())
+            },
+            inside,
+        ]);
+    }
+    t.render()
+}
+
+/// The corpus' confusion matrix and every entry's verdicts.
+pub fn corpus_section(outcomes: &[crate::corpus::Outcome]) -> String {
+    use crate::corpus::{Confusion, Expect, Truth};
+    let c = Confusion::of(outcomes);
+    let mut out = String::from(
+        "Schemes and scenes outside the catalogue, written apart from it: correct ones \
+         (odd orders, order five and six, implicit, symmetric but not symplectic, symplectic \
+         but not symmetric, multistep) and broken ones (rounded or perturbed weights, stale \
+         forces, unsynchronised output, typos in stages, wrong claims), on scenes with and \
+         without exact solutions in one to eight dimensions (few-body problems, a pendulum \
+         near its separatrix, regular Hénon-Heiles and Fermi-Pasta-Ulam-Tsingou orbits, a \
+         Lennard-Jones trimer, the Toda lattice) and on the built-in scenes at other \
+         parameters. Each entry states the verdict every claim must get and why (in the \
+         source, and in the JSON output); a correct entry is a false alarm when any claim \
+         gets another verdict, a broken one is missed when any does.\n\n",
+    );
+    let mut m = Table::new(&["", "judged right", "judged wrong"]);
+    m.row(vec![
+        "correct pairs".into(),
+        format!("{} pass", c.correct_pass),
+        format!("{} false alarms", c.false_alarm),
+    ]);
+    m.row(vec![
+        "broken pairs".into(),
+        format!("{} caught", c.broken_caught),
+        format!("{} missed", c.missed),
+    ]);
+    out.push_str(&m.render());
+    out.push_str(
+        "\nEvery entry, claim by claim: the verdict; `(pass)` in parentheses where the entry \
+         does not judge that claim; **bold** where the verdict is not the expected one.\n\n",
+    );
+    let mut t = Table::new(&[
+        "scheme",
+        "scene",
+        "truth",
+        "order",
+        "energy",
+        "symplectic",
+        "reversible",
+    ]);
+    for o in outcomes {
+        let mut row = vec![
+            format!("`{}`", o.scheme),
+            o.scene.clone(),
+            match o.truth {
+                Truth::Correct => "correct".into(),
+                Truth::Broken => "broken".into(),
+            },
+        ];
+        row.extend(o.claims.iter().map(|j| match (j.expected, j.right()) {
+            (Expect::Any, _) => format!("({})", j.verdict.name()),
+            (_, true) => j.verdict.name().to_string(),
+            (e, false) => format!("**{}** (expected {e:?})", j.verdict.name()),
+        }));
+        t.row(row);
+    }
+    out.push_str(&t.render());
+    out
+}
+
 /// One ladder, rung by rung.
 pub fn rung_table(r: &OrderRecord) -> String {
     let ladder = match r.ladder {
@@ -594,22 +708,40 @@ pub fn deterministic_part(report: &str) -> &str {
 /// Writes `contents` to `path` atomically: a temporary file in the same
 /// directory, then a rename, so a failure leaves any previous file intact.
 pub fn write_atomically(path: &Path, contents: &str) -> Result<(), Error> {
-    let io = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let name = path
-        .file_name()
-        .ok_or_else(|| io(std::io::Error::other("not a file name")))?;
-    let tmp = path.with_file_name(format!(
-        ".{}.tmp-{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
+    let tmp = temporary_beside(path)?;
     let written = std::fs::write(&tmp, contents).and_then(|()| std::fs::rename(&tmp, path));
     if let Err(e) = written {
         let _ = std::fs::remove_file(&tmp);
-        return Err(io(e));
+        return Err(Error::Io {
+            path: path.to_path_buf(),
+            source: e,
+        });
     }
     Ok(())
+}
+
+/// Fails as [`write_atomically`] would, without touching `path`: called
+/// before a long computation whose result goes there, so that a mistyped
+/// path is reported at once rather than after the work.
+pub fn check_writable(path: &Path) -> Result<(), Error> {
+    let tmp = temporary_beside(path)?;
+    std::fs::write(&tmp, "")
+        .and_then(|()| std::fs::remove_file(&tmp))
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+}
+
+/// The temporary file a write to `path` goes through.
+fn temporary_beside(path: &Path) -> Result<std::path::PathBuf, Error> {
+    let name = path.file_name().ok_or_else(|| Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::other("not a file name"),
+    })?;
+    Ok(path.with_file_name(format!(
+        ".{}.tmp-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    )))
 }

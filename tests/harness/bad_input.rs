@@ -367,4 +367,5 @@ fn unknown_ids_list_the_valid_ones() {
     refused(&["order", "--scene", "harmonic"], "--scheme");
     refused(&["frobnicate"], "unrecognized subcommand");
     refused(&["report", "--threads", "0"], "threads = 0 is invalid");
+    refused(&["corpus", "--threads", "0"], "threads = 0 is invalid");
 }

@@ -6,6 +6,7 @@ mod broken;
 mod catalogue;
 mod cli;
 mod common;
+mod corpus;
 mod figures;
 mod geometry;
 mod hard;

@@ -2,7 +2,7 @@
 //! law they are given, and a correct scheme passes on any oscillator.
 
 use proptest::prelude::*;
-use stepladder::ladder::AUTO_MAX_RUNG_STEPS;
+use stepladder::ladder::AUTO_MAX_RUNG_EVALUATIONS;
 use stepladder::ladder::per_octave;
 use stepladder::measure::order::{OrderSpec, RungData, analyse, global_order};
 use stepladder::measure::reverse::{ReverseSpec, reversibility};
@@ -34,7 +34,7 @@ proptest! {
     /// orbit; the round-off's size varies from rung to rung (`u_k` in [0.5,
     /// 1.5), as each run rounds differently) and the analysis is given its
     /// bound `1.5 f / h`, as the twins' law would give it. Time is in units of
-    /// the run, down to `AUTO_MAX_RUNG_STEPS` steps. Wherever the clean rungs
+    /// the run, down to `AUTO_MAX_RUNG_EVALUATIONS` steps. Wherever the clean rungs
     /// (round-off bound within `clean_fraction` of the error) span the
     /// window's two halvings, the window must lie among them and the verdict
     /// must accept `p`.
@@ -49,7 +49,7 @@ proptest! {
         let h0 = (0.03 / c).powf(1.0 / p);
         let m = per_octave(p.ceil() as u32);
         let ratio = 2f64.powf(-1.0 / m as f64);
-        let finest = 1.0 / AUTO_MAX_RUNG_STEPS as f64;
+        let finest = 1.0 / AUTO_MAX_RUNG_EVALUATIONS as f64;
         let bound = |h: f64| 1.5 * floor / h;
         // the finest step whose round-off bound is a clean part of its error
         let clean_below = (bound(1.0) / (clean_fraction(ratio.recip().ln(), p) * c)).powf(1.0 / (p + 1.0));

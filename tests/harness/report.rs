@@ -3,7 +3,6 @@
 
 use std::path::PathBuf;
 use stepladder::report::{deterministic, deterministic_part, write_atomically};
-use stepladder::suite::run_suite;
 
 #[test]
 fn committed_report_is_up_to_date() {
@@ -14,12 +13,6 @@ fn committed_report_is_up_to_date() {
         deterministic_part(&committed) == fresh,
         "REPORT.md is stale: regenerate it with `cargo run --release`"
     );
-}
-
-#[test]
-fn results_do_not_depend_on_the_thread_count() {
-    let one = deterministic(&run_suite(1, &|_, _, _| {}).unwrap());
-    assert!(one == deterministic(super::common::suite()));
 }
 
 #[test]
