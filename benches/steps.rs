@@ -16,7 +16,7 @@ use criterion::{
 use ode_solvers::{Dop853, OutputType, Rk4, System, Vector4};
 use std::f64::consts::PI;
 use std::hint::black_box;
-use stepladder::measure::cost::{floor_verlet_kepler, run_steps};
+use stepladder::measure::cost::step_time::{floor_verlet_kepler, run_steps};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene};
 use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
 

@@ -14,10 +14,10 @@
 //! insta in its own snapshot folder.
 
 use crate::measure::Verdict;
-use crate::measure::energy::{EnergyRecord, EnergySpec, energy_drift};
-use crate::measure::order::{OrderRecord, OrderSpec, global_order};
-use crate::measure::reverse::{ReverseRecord, ReverseSpec, reversibility};
-use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+use crate::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use crate::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
+use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
+use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 

@@ -14,9 +14,9 @@
 //!   eccentric Kepler orbit and the anharmonic well (trapped orbits in Jacobi
 //!   elliptic functions, and its separatrix), with exact solutions; the
 //!   [`scene::Scene`] trait to bring your own.
-//! - [`measure`]: the studies; [`measure::order::global_order`] measures the
+//! - [`measure`]: the studies; [`measure::accuracy::order::global_order`] measures the
 //!   global order with a 95% interval over an automatically chosen window;
-//!   [`measure::roundoff`] and [`measure::longrun`] the round-off floors and
+//!   [`measure::roundoff::floor`] and [`measure::roundoff::longrun`] the round-off floors and
 //!   the growth of round-off over long runs.
 //! - [`hard`]: the hard cases: orders and energy on eccentric Kepler orbits,
 //!   how long a scheme follows the anharmonic well's separatrix, and whether
@@ -25,11 +25,11 @@
 //!   crate's tests, with the deciding figures in the failure message.
 //! - [`work`]: speed against error, the force evaluations and the time each
 //!   scheme needs to reach target errors, beside the `ode_solvers` peer;
-//!   [`measure::cost`] times a step against a hand-written floor.
+//!   [`measure::cost::step_time`] times a step against a hand-written floor.
 //! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
 //!
 //! ```
-//! use stepladder::measure::order::{global_order, OrderSpec};
+//! use stepladder::measure::accuracy::order::{global_order, OrderSpec};
 //! use stepladder::scene::KeplerCircular;
 //! use stepladder::scheme::Leapfrog;
 //!
@@ -41,24 +41,20 @@
 //! ```
 #![warn(missing_docs)]
 
-pub mod case;
 pub mod cli;
 pub mod corpus;
 pub mod error;
 pub mod guard;
-pub mod hard;
 pub mod ladder;
 pub mod measure;
 pub mod parallel;
 pub mod report;
-pub mod roundoff_suite;
 pub mod run;
 pub mod scene;
 pub mod scheme;
 pub mod state;
 pub mod suite;
 pub mod tolerance;
-pub mod work;
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

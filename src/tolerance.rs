@@ -18,7 +18,7 @@ pub fn blow_up_bound(scale: f64) -> f64 {
 pub const ORDER_TOLERANCE: f64 = 0.1;
 
 /// Fewest rungs an order fit may use. The fit has four coefficients (see
-/// [`crate::measure::fit`]); six rungs leave two degrees of freedom for the
+/// [`crate::measure::accuracy::fit`]); six rungs leave two degrees of freedom for the
 /// interval, and a window shorter than that says too little to trust.
 pub const MIN_WINDOW: usize = 6;
 
@@ -206,19 +206,13 @@ pub const LOST_GROWTH: f64 = 1.1;
 /// error has reached its plateau, long enough to tell `t^(1/2)` from `t`.
 pub const GROWTH_DECADES: f64 = 2.0;
 
-/// The energy class of a growth exponent `g`: the boundaries sit halfway
-/// between the three laws, `g = 0` (bounded), `1/2` (random walk) and `1`
-/// (drift).
-pub fn classify_growth(g: f64) -> crate::measure::energy::EnergyClass {
-    use crate::measure::energy::EnergyClass;
-    if g < 0.25 {
-        EnergyClass::Bounded
-    } else if g < 0.75 {
-        EnergyClass::RandomWalk
-    } else {
-        EnergyClass::Drifting
-    }
-}
+/// Growth exponents below this are bounded: halfway between the laws
+/// `g = 0` (bounded) and `1/2` (random walk).
+pub const BOUNDED_BELOW: f64 = 0.25;
+
+/// Growth exponents below this (and at least [`BOUNDED_BELOW`]) are a random
+/// walk: halfway between `g = 1/2` and `1` (drift).
+pub const RANDOM_WALK_BELOW: f64 = 0.75;
 
 /// The largest relative energy error round-off alone can produce in `steps`
 /// steps: each step rounds the energy by a few `eps`, which adds up as a
@@ -267,7 +261,7 @@ pub const STABILITY_SLACK_EPS_PER_EVALUATION: f64 = 32.0;
 /// Width to which each stability boundary is bisected, in `z = h w0`.
 pub const STABILITY_BISECTION: f64 = 1e-10;
 
-// Round-off studies (`measure::roundoff`, `measure::longrun`).
+// Round-off studies (`measure::roundoff::floor`, `measure::roundoff::longrun`).
 
 /// The round-off component of a plain scheme's error is fitted against the
 /// step over rungs of at least this many steps: a random walk of fewer
@@ -288,7 +282,7 @@ pub const ROUND_OFF_PAST_FLOOR: usize = 2;
 /// that performs a random walk (the root mean square over the long runs' 16
 /// realisations, over two decades of time). The exponent of a true random
 /// walk is itself random: simulated ensembles of unbiased walks, sampled and
-/// fitted exactly like the long runs (`measure::longrun`'s tests), give
+/// fitted exactly like the long runs (`measure::roundoff::longrun`'s tests), give
 /// exponents with mean 1/2 and standard deviation near 0.06, and 200 of them
 /// stay within 0.19 of 1/2. A quarter is four standard deviations, and the
 /// boundary of the energy study's random-walk class on either side; a bias

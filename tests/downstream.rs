@@ -4,7 +4,7 @@
 
 use nalgebra::{SVector, Vector1};
 use stepladder::guard;
-use stepladder::measure::order::{OrderSpec, Reference, global_order};
+use stepladder::measure::accuracy::order::{OrderSpec, Reference, global_order};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene, SceneMeta};
 use stepladder::scheme::{Scheme, SchemeMeta, StepFailure};
 use stepladder::state::{Real, State};

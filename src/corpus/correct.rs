@@ -1146,7 +1146,7 @@ pub(crate) mod tests {
         let scene = Anharmonic::default();
         let s = State::new(Vector1::new(0.45), Vector1::new(0.2));
         let differences = step_jacobian(scheme, &scene, &s, h).determinant();
-        let dual = crate::measure::tangent::step_jacobian(scheme, &scene, &s, h)
+        let dual = crate::measure::geometry::tangent::step_jacobian(scheme, &scene, &s, h)
             .expect("step")
             .determinant();
         assert!(

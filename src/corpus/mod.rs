@@ -24,8 +24,8 @@ pub mod scenes;
 
 pub use pairs::{broken as broken_pairs, correct as correct_pairs, entries};
 
-use crate::case::{Bound, Case};
 use crate::measure::Verdict;
+use crate::measure::case::{Bound, Case};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use serde::Serialize;
@@ -258,10 +258,10 @@ impl Outcome {
 
 /// Runs every study of `entry` and judges its claims.
 pub fn judge(entry: &Entry) -> Result<Outcome, crate::error::Error> {
-    use crate::measure::energy::EnergySpec;
-    use crate::measure::order::OrderSpec;
-    use crate::measure::reverse::ReverseSpec;
-    use crate::measure::symplectic::SymplecticSpec;
+    use crate::measure::accuracy::order::OrderSpec;
+    use crate::measure::geometry::energy::EnergySpec;
+    use crate::measure::geometry::reverse::ReverseSpec;
+    use crate::measure::geometry::symplectic::SymplecticSpec;
     let c = &entry.case;
     let order = c.order(&OrderSpec::default())?;
     let energy = c.energy(&EnergySpec::default())?;

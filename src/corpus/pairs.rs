@@ -21,7 +21,8 @@ fn well(x0: f64) -> Anharmonic {
 
 const ORDER: Expected = Expected::ANY.order(Expect::Fail);
 
-/// Correct pairs: every claim holds, so every verdict must pass.
+/// Correct pairs: every claim holds, so every verdict must pass. A data
+/// list, one entry per pair, long by design.
 pub fn correct() -> Vec<Entry> {
     vec![
         Entry::correct(
@@ -244,7 +245,8 @@ pub fn correct() -> Vec<Entry> {
 }
 
 /// Broken pairs: at least one claim is false on the scene and visible in
-/// double precision, and its verdict must fail.
+/// double precision, and its verdict must fail. A data list, one entry per
+/// pair, long by design.
 pub fn broken() -> Vec<Entry> {
     vec![
         Entry::broken(

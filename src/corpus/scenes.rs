@@ -362,7 +362,7 @@ impl Scene<1> for Morse {
 mod tests {
     use super::*;
     use crate::measure::Verdict;
-    use crate::measure::scene_check::check_scene;
+    use crate::measure::accuracy::scene_check::check_scene;
     use crate::run::integrate;
     use crate::scheme::{KAHAN_LI8, VELOCITY_VERLET};
 

@@ -1,24 +1,24 @@
 //! Studies: each turns runs of one scheme on one scene into a record, plain
 //! serde data that feeds the CLI's `--json`, the snapshots and the report.
+//! They are grouped by the question they answer:
+//!
+//! - [`accuracy`]: the global order (and its fit), the phase error, the
+//!   course notes' trajectories, the check of every scene's exact solution;
+//! - [`geometry`]: energy over long runs, symplecticity of the tangent map,
+//!   reversibility;
+//! - [`stability`]: the linear stability intervals;
+//! - [`roundoff`]: the round-off floor of the Verlet forms and its growth
+//!   over long runs;
+//! - [`cost`]: time per step, force evaluations against error, the peer;
+//! - [`hard`]: eccentric orbits, the separatrix, escape or trapped.
 
+pub mod accuracy;
+pub mod case;
 pub mod cost;
-pub mod eccentric;
-pub mod energy;
-pub mod escape;
-pub mod fit;
-pub mod following;
-pub mod longrun;
-pub mod order;
-pub mod peer;
-pub mod phase;
-pub mod reverse;
+pub mod geometry;
+pub mod hard;
 pub mod roundoff;
-pub mod scene_check;
 pub mod stability;
-pub mod symplectic;
-pub mod tangent;
-pub mod trajectory;
-pub mod work;
 
 use serde::Serialize;
 

@@ -7,7 +7,7 @@
 //! spectral radius is at most one. The boundaries of the stable set are
 //! found on a scan and bisected.
 
-use super::phase::one_step_matrix;
+use crate::measure::accuracy::phase::one_step_matrix;
 use crate::scheme::Scheme;
 use crate::tolerance::{STABILITY_BISECTION, STABILITY_SLACK_EPS_PER_EVALUATION};
 use nalgebra::Matrix2;

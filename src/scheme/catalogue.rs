@@ -2,7 +2,7 @@
 //! table) plus one line here; every test, study and report loops over it.
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
-use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, VELOCITY_VERLET};
+use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
 
@@ -49,3 +49,15 @@ catalogue![
 pub fn scheme_ids() -> Vec<&'static str> {
     catalogue().iter().map(|m| m.id).collect()
 }
+
+/// Every splitting table of the catalogue, compositions included: the one
+/// list that tests of weights, symmetry and order conditions loop over.
+pub const TABLES: &[&SplittingTable] = &[
+    &EULER_CROMER,
+    &VELOCITY_VERLET,
+    &POSITION_VERLET,
+    &PEFRL,
+    &FOREST_RUTH,
+    &YOSHIDA6,
+    &KAHAN_LI8,
+];

@@ -15,7 +15,7 @@ mod runge_kutta;
 mod splitting;
 mod verlet;
 
-pub use catalogue::{SchemeVisitor, catalogue, scheme_ids, visit_scheme};
+pub use catalogue::{SchemeVisitor, TABLES, catalogue, scheme_ids, visit_scheme};
 pub use compensated::{
     CompensatedSplitting, LeapfrogCompensated, StormerVerletCompensated,
     VELOCITY_VERLET_COMPENSATED,
@@ -24,9 +24,7 @@ pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
 pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
 pub use runge_kutta::Rk4;
-pub use splitting::{
-    EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, TABLES, VELOCITY_VERLET,
-};
+pub use splitting::{EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 pub use verlet::{Leapfrog, StormerVerlet};
 
 use crate::scene::Scene;

@@ -7,7 +7,6 @@
 //! Compositions of velocity Verlet (see [`super::composition`]) are turned into
 //! such tables at compile time and run by the same stepper.
 
-use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
 use super::{Scheme, SchemeMeta, StepFailure, VERLET_PHASE, WithAcceleration};
 use crate::scene::Scene;
 use crate::state::{Real, State};
@@ -251,15 +250,3 @@ mod pefrl {
     /// Published -0.06626458266981849.
     pub const CHI: f64 = -0.0662645826698185;
 }
-
-/// Every splitting table of the catalogue, compositions included: the one
-/// list that tests of weights, symmetry and order conditions loop over.
-pub const TABLES: &[&SplittingTable] = &[
-    &EULER_CROMER,
-    &VELOCITY_VERLET,
-    &POSITION_VERLET,
-    &PEFRL,
-    &FOREST_RUTH,
-    &YOSHIDA6,
-    &KAHAN_LI8,
-];

@@ -4,7 +4,7 @@
 //! measured order.
 
 use stepladder::measure::Verdict;
-use stepladder::measure::order::{OrderSpec, global_order};
+use stepladder::measure::accuracy::order::{OrderSpec, global_order};
 use stepladder::scene::{Harmonic, KeplerCircular, KeplerEccentric, Scene};
 use stepladder::scheme::{
     Flow, KAHAN_LI8, Leapfrog, Scheme, SchemeMeta, SplittingTable, StepFailure, VELOCITY_VERLET,

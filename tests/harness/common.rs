@@ -1,7 +1,8 @@
 //! What several test modules share.
 
 use std::sync::OnceLock;
-use stepladder::suite::{SuiteRecords, default_threads, run_suite};
+use stepladder::parallel::default_threads;
+use stepladder::suite::{SuiteRecords, run_suite};
 
 /// Every study on every scheme and scene, run once for the whole binary.
 pub fn suite() -> &'static SuiteRecords {

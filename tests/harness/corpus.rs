@@ -12,9 +12,9 @@ use stepladder::corpus::correct::{KUTTA3, RUTH3, TRAPEZOIDAL};
 use stepladder::corpus::scenes::{FigureEight, HenonHeiles, Pendulum};
 use stepladder::corpus::{Confusion, Truth};
 use stepladder::measure::Verdict;
-use stepladder::measure::energy::{EnergySpec, energy_drift};
-use stepladder::measure::order::{OrderRecord, OrderSpec, global_order};
-use stepladder::measure::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use stepladder::measure::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::measure::geometry::symplectic::{SymplecticSpec, symplecticity};
 use stepladder::scene::{Anharmonic, AnyScene, Harmonic, Hidden, KeplerEccentric, Scene};
 use stepladder::scheme::{KAHAN_LI8, PEFRL, Rk4, Scheme, YOSHIDA6};
 
@@ -119,7 +119,7 @@ fn high_orders_pass_on_scenes_without_an_exact_solution() {
 fn high_orders_pass_near_the_separatrix_of_the_built_in_well() {
     let well = AnyScene::parse("anharmonic:x0=0.95").expect("a valid scene");
     for id in ["euler", "rk4", "kahan-li8"] {
-        let case = stepladder::case::case(id, &well).expect("catalogue id");
+        let case = stepladder::measure::case::case(id, &well).expect("catalogue id");
         let r = case.order(&OrderSpec::default()).expect("valid defaults");
         assert_passes(&r);
         let hidden = case

@@ -4,11 +4,11 @@
 
 use nalgebra::{SVector, Vector1};
 use stepladder::measure::Verdict;
-use stepladder::measure::energy::{EnergyClass, EnergySpec, energy_drift};
-use stepladder::measure::reverse::{ReverseSpec, reversibility};
-use stepladder::measure::scene_check::check_scene;
-use stepladder::measure::symplectic::{SymplecticSpec, symplecticity};
-use stepladder::measure::tangent::step_jacobian;
+use stepladder::measure::accuracy::scene_check::check_scene;
+use stepladder::measure::geometry::energy::{EnergyClass, EnergySpec, energy_drift};
+use stepladder::measure::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::measure::geometry::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::measure::geometry::tangent::step_jacobian;
 use stepladder::run::integrate;
 use stepladder::scene::{Harmonic, KeplerCircular, Scene, SceneMeta};
 use stepladder::scheme::{
@@ -263,7 +263,7 @@ fn every_built_in_scene_passes_its_check() {
 
 struct Check;
 impl stepladder::scene::SceneVisitor for Check {
-    type Output = stepladder::measure::scene_check::SceneCheck;
+    type Output = stepladder::measure::accuracy::scene_check::SceneCheck;
     fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
         self,
         s: &S,

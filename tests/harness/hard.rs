@@ -5,16 +5,18 @@
 
 use super::cli::{json, refused};
 use super::common::settings;
-use stepladder::hard::HardCases;
-use stepladder::measure::eccentric::{
+use stepladder::measure::hard::eccentric::{
     ECCENTRICITIES, ORDER_SCHEMES, OrbitEnergy, OrderStatus, Pericentre, eccentric_order,
 };
-use stepladder::measure::escape::{EscapeSpec, Misclassified, classify_at, escape_or_trapped};
-use stepladder::measure::following::{Event, WellSpec, following, line_fit};
+use stepladder::measure::hard::escape::{
+    EscapeSpec, Misclassified, classify_at, escape_or_trapped,
+};
+use stepladder::measure::hard::following::{Event, WellSpec, following, line_fit};
 use stepladder::scene::{Anharmonic, KeplerEccentric, Scene, Separatrix};
 use stepladder::scheme::{
     POSITION_VERLET, Scheme, SchemeVisitor, VELOCITY_VERLET, catalogue, visit_scheme,
 };
+use stepladder::suite::hard_cases::HardCases;
 use stepladder::tolerance::{ERROR_CEILING, SEPARATRIX_SLOPE_TOLERANCE};
 
 fn hard() -> &'static HardCases {
@@ -281,7 +283,7 @@ fn escape_or_trapped_follows_the_wells_units() {
 /// gain is first order in `h`, so the boundary is proportional to `delta`.
 #[test]
 fn euler_misclassifies_the_trapped_orbit_by_drifting() {
-    let [wide, narrow] = stepladder::hard::ESCAPE_DELTAS;
+    let [wide, narrow] = stepladder::suite::hard_cases::ESCAPE_DELTAS;
     let at = |d: f64| hard().escape_of("euler", d).unwrap();
     for d in [wide, narrow] {
         assert_eq!(at(d).fails_by, Some(Misclassified::TrappedEscapes));
@@ -537,7 +539,7 @@ fn hard_case_commands_answer_in_json_and_refuse_bad_input_in_one_line() {
 /// that step, the largest error falls at first order.
 #[test]
 fn euler_cromer_turns_first_order_below_the_predicted_step() {
-    use stepladder::measure::eccentric::kick_lag;
+    use stepladder::measure::hard::eccentric::kick_lag;
     use stepladder::run::integrate;
     use stepladder::scheme::EULER_CROMER;
     let r = hard()

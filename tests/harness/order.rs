@@ -2,7 +2,7 @@
 //! or ladders, and it must use the steps actually run.
 
 use stepladder::ladder::{Ladder, LadderChoice};
-use stepladder::measure::order::{OrderSpec, global_order};
+use stepladder::measure::accuracy::order::{OrderSpec, global_order};
 use stepladder::run::integrate;
 use stepladder::scene::{Harmonic, Scene};
 use stepladder::scheme::{EULER_CROMER, VELOCITY_VERLET};
@@ -104,7 +104,7 @@ impl Scene<1> for Unsolved {
 
 #[test]
 fn without_an_exact_solution_successive_rungs_give_the_same_order() {
-    use stepladder::measure::order::Reference;
+    use stepladder::measure::accuracy::order::Reference;
     use stepladder::scheme::{Euler, Rk4};
     let hidden = Unsolved(Harmonic::new(1.3, 0.4, 0.9).unwrap());
     for (order, record) in [

@@ -4,9 +4,9 @@
 use proptest::prelude::*;
 use stepladder::ladder::AUTO_MAX_RUNG_EVALUATIONS;
 use stepladder::ladder::per_octave;
-use stepladder::measure::order::{OrderSpec, RungData, analyse, global_order};
-use stepladder::measure::reverse::{ReverseSpec, reversibility};
-use stepladder::measure::tangent::step_jacobian;
+use stepladder::measure::accuracy::order::{OrderSpec, RungData, analyse, global_order};
+use stepladder::measure::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::measure::geometry::tangent::step_jacobian;
 use stepladder::run::integrate;
 use stepladder::scene::Harmonic;
 use stepladder::scene::Scene;
@@ -193,7 +193,7 @@ struct ClosedForm {
 impl SchemeVisitor for &ClosedForm {
     type Output = Result<(), String>;
     fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output {
-        use stepladder::measure::phase::one_step_matrix;
+        use stepladder::measure::accuracy::phase::one_step_matrix;
         let id = scheme.meta().id;
         // the matrix of x'' = -x at step z; on w0 the same map in units of 1/w0
         let m = one_step_matrix(scheme, self.z).ok_or(format!("{id}: no step"))?;

@@ -15,6 +15,40 @@ fn committed_report_is_up_to_date() {
     );
 }
 
+/// The figures committed beside REPORT.md are the ones the current code
+/// draws from the suite's records, file for file, with none missing and
+/// none left over. They show errors, force evaluations and energies, never
+/// wall time, so they are the same on every machine and thread count.
+#[test]
+fn committed_figures_are_up_to_date() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(stepladder::report::figures::FOLDER);
+    let fresh = stepladder::report::figures::deterministic_figures(super::common::suite())
+        .expect("the figures draw");
+    let mut stale = Vec::new();
+    for (name, svg) in &fresh {
+        match std::fs::read_to_string(dir.join(name)) {
+            Ok(committed) if committed == *svg => {}
+            Ok(_) => stale.push(format!("{name} differs")),
+            Err(_) => stale.push(format!("{name} is missing")),
+        }
+    }
+    let mut committed: Vec<String> = std::fs::read_dir(&dir)
+        .expect("the figures are committed")
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    committed.retain(|n| !fresh.iter().any(|(f, _)| f == n));
+    stale.extend(
+        committed
+            .into_iter()
+            .map(|n| format!("{n} is not drawn any more")),
+    );
+    assert!(
+        stale.is_empty(),
+        "figures are stale ({}): regenerate them with `cargo run --release`",
+        stale.join(", ")
+    );
+}
+
 #[test]
 fn a_failed_write_leaves_the_previous_report_intact() {
     let dir = std::env::temp_dir().join(format!("stepladder-report-{}", std::process::id()));

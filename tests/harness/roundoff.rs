@@ -4,7 +4,7 @@
 
 use super::cli::{json, refused, run};
 use stepladder::guard::assert_claims;
-use stepladder::measure::roundoff::{PairRecord, RoundoffRecord};
+use stepladder::measure::roundoff::floor::{PairRecord, RoundoffRecord};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene};
 use stepladder::scheme::compensated::{PairVisitor, paired_ids, visit_pair};
 use stepladder::scheme::{Scheme, StormerVerlet, StormerVerletCompensated};

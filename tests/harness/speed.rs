@@ -3,15 +3,15 @@
 //! of the cheapest scheme, and the peer measured like the catalogue. No
 //! assertion here depends on how fast the machine is.
 
-use stepladder::measure::cost::{floor_verlet_kepler, run_steps, speed, time_run};
-use stepladder::measure::peer::{peer_targets, run_peer_any};
-use stepladder::measure::work::{
+use stepladder::measure::cost::peer::{peer_targets, run_peer_any};
+use stepladder::measure::cost::step_time::{floor_verlet_kepler, run_steps, speed, time_run};
+use stepladder::measure::cost::work_points::{
     Reach, TARGETS, TargetCost, WorkPoint, cheapest, cost_to_reach, start_evaluations,
 };
 use stepladder::run::integrate;
 use stepladder::scene::{AnyScene, Counted, Harmonic, KeplerCircular, Scene, SceneVisitor};
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
-use stepladder::work::cheapest_per_target;
+use stepladder::suite::work_precision::cheapest_per_target;
 
 /// The floor runs the same arithmetic as the catalogue's velocity Verlet, so
 /// the two must agree to the last bit: a comparison of their speeds is then
@@ -134,7 +134,10 @@ fn speed_record_is_consistent_with_counted_evaluations() {
 /// The work study's points on every scene: the order study's rungs first,
 /// unchanged, then its ladder continued; every point's evaluations are what
 /// a counting scene sees when the rung is run again.
-struct PointsAreCounted<'a>(&'a stepladder::work::WorkRecord, &'a AnyScene);
+struct PointsAreCounted<'a>(
+    &'a stepladder::suite::work_precision::WorkRecord,
+    &'a AnyScene,
+);
 impl SchemeVisitor for PointsAreCounted<'_> {
     type Output = ();
     fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) {

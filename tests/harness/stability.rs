@@ -1,8 +1,8 @@
 //! Linear stability against its analytic values, and runs above the limit
 //! that must end early with a clear verdict.
 
-use stepladder::measure::energy::{EnergySpec, energy_drift};
-use stepladder::measure::phase::one_step_matrix;
+use stepladder::measure::accuracy::phase::one_step_matrix;
+use stepladder::measure::geometry::energy::{EnergySpec, energy_drift};
 use stepladder::measure::stability::{StabilityRecord, spectral_radius, stability};
 use stepladder::run::Outcome;
 use stepladder::scene::Harmonic;

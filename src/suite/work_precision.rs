@@ -1,20 +1,20 @@
 //! The work-precision study over the catalogue and the built-in scenes:
 //! for each scene, every scheme's cost of reaching each target error (from
-//! [`crate::measure::work`]), the `ode_solvers` peer beside them
-//! ([`crate::measure::peer`]), the cheapest scheme per target, and, apart
+//! [`crate::measure::cost::work_points`]), the `ode_solvers` peer beside them
+//! ([`crate::measure::cost::peer`]), the cheapest scheme per target, and, apart
 //! from these deterministic records, the wall time it all takes here.
 
-use crate::case::case;
 use crate::error::Error;
-use crate::measure::cost::{SPEED_STEP, time_run};
-use crate::measure::order::{OrderRecord, OrderSpec};
-use crate::measure::peer::{PeerTimes, PeerWork, peer_work};
-use crate::measure::work::{
+use crate::measure::accuracy::order::{OrderRecord, OrderSpec};
+use crate::measure::case::case;
+use crate::measure::cost::peer::{PeerTimes, PeerWork, peer_work};
+use crate::measure::cost::step_time::{SPEED_STEP, time_run};
+use crate::measure::cost::work_points::{
     ENERGY_PERIODS, Reach, SchemeWork, TARGETS, TargetCost, cheapest, cost_to_reach, scheme_work,
 };
+use crate::parallel::parallel_map;
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
-use crate::suite::parallel_map;
 use serde::Serialize;
 use std::time::Duration;
 
@@ -288,7 +288,8 @@ fn timing(record: &WorkRecord, schemes: Vec<SchemeTiming>, peer: PeerTimes) -> W
             })
             .collect()
     };
-    let peer_points = |points: Option<&Vec<crate::measure::peer::PeerPoint>>, times: &[f64]| {
+    let peer_points = |points: Option<&Vec<crate::measure::cost::peer::PeerPoint>>,
+                       times: &[f64]| {
         points.map(|p| {
             p.iter()
                 .zip(times)

@@ -11,8 +11,8 @@
 //! initial step-size guess). Output is requested at the steps it takes, not
 //! interpolated, so no evaluation is spent on dense output.
 
-use super::energy::energy_norm;
-use super::work::{TargetCost, WorkPoint, targets_of};
+use crate::measure::cost::work_points::{TargetCost, WorkPoint, targets_of};
+use crate::measure::geometry::energy::energy_norm;
 use crate::scene::Scene;
 use crate::state::State;
 use ode_solvers::{Dop853, OutputType, SVector, System};
@@ -283,7 +283,7 @@ pub fn peer_work<S: Scene<D>, const D: usize>(
     Some((work, times))
 }
 
-/// The evaluations to reach each of [`super::work::TARGETS`] from the peer's points,
+/// The evaluations to reach each of [`crate::measure::cost::work_points::TARGETS`] from the peer's points,
 /// loosest tolerance first.
 pub fn peer_targets(points: &[PeerPoint]) -> Vec<TargetCost> {
     let data: Vec<(f64, Option<f64>)> = points

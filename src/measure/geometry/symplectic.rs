@@ -1,9 +1,9 @@
 //! Symplecticity: the exact tangent map `J` of one step, `det(J) - 1` and
 //! `max |J^T Omega J - Omega|`, at several step sizes and states.
 
-use super::Verdict;
-use super::tangent::{step_jacobian, symplectic_residual};
 use crate::error::Error;
+use crate::measure::Verdict;
+use crate::measure::geometry::tangent::{step_jacobian, symplectic_residual};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::state::State;

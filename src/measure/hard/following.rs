@@ -33,9 +33,11 @@
 //! 12` gives `dE = -k h^2 E_b / 12` (it falls back). The study measures `T`,
 //! `T_D` and `dE` on a ladder of steps and fits the three slopes.
 
-use super::fit::{PowerLaw, power_law};
-use super::order::{DropReason, RoundOffModel, RungData, local_order, select_window};
 use crate::error::Error;
+use crate::measure::accuracy::fit::{PowerLaw, power_law};
+use crate::measure::accuracy::order::{
+    DropReason, RoundOffModel, RungData, local_order, select_window,
+};
 use crate::scene::{Scaled, Scene, Separatrix};
 use crate::scheme::Scheme;
 use crate::tolerance::{
@@ -235,38 +237,7 @@ pub fn following<M: Scheme>(scheme: &M, well: WellSpec) -> Result<FollowingRecor
     let ratio = following_ratio(meta.order);
     // the ceiling of the window search is the offset ceiling
     let scale = SEPARATRIX_OFFSET_CEILING / ERROR_CEILING;
-    let mut rungs: Vec<FollowingRung> = Vec::new();
-    // each run has a twin in units TWIN_SCALE smaller, the same motion
-    // rounded differently: the offsets' difference is a sample of the
-    // offset's round-off (see `tolerance::TWIN_SCALE`)
-    let twin_scene = Scaled::new(sep, TWIN_SCALE);
-    for j in 0.. {
-        let h = unit * ratio.powi(j);
-        if h < SEPARATRIX_MIN_STEP * unit {
-            break;
-        }
-        let mut rung = run_rung(scheme, &sep, &sep, 1.0, well, h);
-        let twin = run_rung(scheme, &twin_scene, &sep, TWIN_SCALE, well, h);
-        rung.round_off_sample = match (rung.barrier_offset, twin.barrier_offset) {
-            (Some(a), Some(b)) => Some((a - b).abs()),
-            _ => None,
-        };
-        rungs.push(rung);
-        // the two finest rungs with an offset on the round-off floor: finer
-        // steps only add round-off
-        let choice = select_window(&offsets(&rungs), scale);
-        let on_floor = rungs
-            .iter()
-            .zip(&choice.dropped)
-            .filter(|(r, _)| r.barrier_offset.is_some())
-            .rev()
-            .take(2)
-            .filter(|(_, d)| **d == Some(DropReason::RoundOff))
-            .count();
-        if on_floor == 2 {
-            break;
-        }
-    }
+    let mut rungs = run_ladder(scheme, sep, well, unit, ratio, scale);
     let data = offsets(&rungs);
     for k in 1..rungs.len() {
         rungs[k].local_exponent = local_order(
@@ -340,6 +311,51 @@ pub fn following<M: Scheme>(scheme: &M, well: WellSpec) -> Result<FollowingRecor
         rungs,
         steps,
     })
+}
+
+/// The ladder of runs from `h0` down by `ratio`, each with its twin, until the
+/// two finest offsets sit on the round-off floor or the step limit is reached.
+fn run_ladder<M: Scheme>(
+    scheme: &M,
+    sep: Separatrix,
+    well: WellSpec,
+    h0: f64,
+    ratio: f64,
+    scale: f64,
+) -> Vec<FollowingRung> {
+    let mut rungs: Vec<FollowingRung> = Vec::new();
+    // each run has a twin in units TWIN_SCALE smaller, the same motion
+    // rounded differently: the offsets' difference is a sample of the
+    // offset's round-off (see `tolerance::TWIN_SCALE`)
+    let twin_scene = Scaled::new(sep, TWIN_SCALE);
+    for j in 0.. {
+        let h = h0 * ratio.powi(j);
+        if h < SEPARATRIX_MIN_STEP * h0 {
+            break;
+        }
+        let mut rung = run_rung(scheme, &sep, &sep, 1.0, well, h);
+        let twin = run_rung(scheme, &twin_scene, &sep, TWIN_SCALE, well, h);
+        rung.round_off_sample = match (rung.barrier_offset, twin.barrier_offset) {
+            (Some(a), Some(b)) => Some((a - b).abs()),
+            _ => None,
+        };
+        rungs.push(rung);
+        // the two finest rungs with an offset on the round-off floor: finer
+        // steps only add round-off
+        let choice = select_window(&offsets(&rungs), scale);
+        let on_floor = rungs
+            .iter()
+            .zip(&choice.dropped)
+            .filter(|(r, _)| r.barrier_offset.is_some())
+            .rev()
+            .take(2)
+            .filter(|(_, d)| **d == Some(DropReason::RoundOff))
+            .count();
+        if on_floor == 2 {
+            break;
+        }
+    }
+    rungs
 }
 
 /// The theory check: `T` against `ln(E_b/|dE|)` must have slope `1 /
@@ -464,16 +480,7 @@ fn run_rung<M: Scheme, S: Scene<1>>(
             last_distance = d;
         }
         if !decided {
-            let (x, v) = (s.q[0], s.v[0]);
-            let event = if x >= alpha {
-                let f = (alpha - last.q[0]) / (x - last.q[0]);
-                Some((Event::Escapes, t - h + f * h))
-            } else if v <= 0.0 {
-                let f = last.v[0] / (last.v[0] - v);
-                Some((Event::FallsBack, t - h + f * h))
-            } else {
-                None
-            };
+            let event = crossing(&last, &s, alpha, t, h);
             if let Some((event, time)) = event {
                 decided = true;
                 let offset = (sep.energy(&s) - eb) / eb;
@@ -490,6 +497,27 @@ fn run_rung<M: Scheme, S: Scene<1>>(
         last = s;
     }
     out
+}
+
+/// Whether the step from `last` to `s`, ending at `t`, crossed the barrier
+/// at `alpha` or turned back, and when, interpolated within the step.
+fn crossing(
+    last: &crate::state::State<1>,
+    s: &crate::state::State<1>,
+    alpha: f64,
+    t: f64,
+    h: f64,
+) -> Option<(Event, f64)> {
+    let (x, v) = (s.q[0], s.v[0]);
+    if x >= alpha {
+        let f = (alpha - last.q[0]) / (x - last.q[0]);
+        Some((Event::Escapes, t - h + f * h))
+    } else if v <= 0.0 {
+        let f = last.v[0] / (last.v[0] - v);
+        Some((Event::FallsBack, t - h + f * h))
+    } else {
+        None
+    }
 }
 
 #[cfg(test)]

@@ -21,8 +21,8 @@
 //! beyond the rungs measured.
 
 use crate::ladder::steps_for;
-use crate::measure::energy::energy_norm;
-use crate::measure::order::OrderRecord;
+use crate::measure::accuracy::order::OrderRecord;
+use crate::measure::geometry::energy::energy_norm;
 use crate::run::integrate;
 use crate::scene::{Counted, Scene};
 use crate::scheme::Scheme;
@@ -111,7 +111,7 @@ impl Reach {
 ///   extrapolated beyond the points measured.
 ///
 /// ```
-/// use stepladder::measure::work::{Reach, cost_to_reach};
+/// use stepladder::measure::cost::work_points::{Reach, cost_to_reach};
 /// let pts = [(10.0, Some(1e-2)), (100.0, Some(1e-4)), (1000.0, Some(1e-6))];
 /// match cost_to_reach(&pts, 1e-3) {
 ///     Reach::Interpolated(c) => assert!((c - 31.6227766).abs() < 1e-6),
@@ -147,7 +147,7 @@ pub fn cost_to_reach(points: &[(f64, Option<f64>)], target: f64) -> Reach {
 /// order on a tie; `None` when none reaches it.
 ///
 /// ```
-/// use stepladder::measure::work::{Reach, cheapest};
+/// use stepladder::measure::cost::work_points::{Reach, cheapest};
 /// let c = [("a", Reach::NotReached), ("b", Reach::Interpolated(50.0)), ("c", Reach::AtMost(40.0))];
 /// assert_eq!(cheapest(&c), Some(("c", Reach::AtMost(40.0))));
 /// assert_eq!(cheapest(&c[..1]), None);

@@ -5,12 +5,12 @@
 //! the same whatever the thread count.
 
 use crate::error::Error;
-use crate::measure::eccentric::{
+use crate::measure::hard::eccentric::{
     ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, ORDER_SCHEMES, Pericentre,
     RoundOffRecord, eccentric_energy, eccentric_order, stormer_round_off,
 };
-use crate::measure::escape::{EscapeRecord, EscapeSpec, escape_or_trapped};
-use crate::measure::following::{FollowingRecord, WellSpec, following};
+use crate::measure::hard::escape::{EscapeRecord, EscapeSpec, escape_or_trapped};
+use crate::measure::hard::following::{FollowingRecord, WellSpec, following};
 use crate::scene::KeplerEccentric;
 use crate::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
 use crate::tolerance::{
@@ -23,7 +23,7 @@ pub const ESCAPE_DELTAS: [f64; 2] = [1e-2, 1e-3];
 
 /// The main energy study's step, in periods, used as the naive step on the
 /// eccentric orbits.
-pub const NAIVE_STEP: f64 = crate::measure::energy::DEFAULT_STEP;
+pub const NAIVE_STEP: f64 = crate::measure::geometry::energy::DEFAULT_STEP;
 
 /// One unit of work.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -245,7 +245,7 @@ impl HardCases {
 
 /// Runs `jobs` on `threads` threads (at least one).
 pub fn run_hard_jobs(jobs: Vec<HardJob>, threads: usize) -> Result<HardCases, Error> {
-    let results = crate::suite::parallel_map(
+    let results = crate::parallel::parallel_map(
         &jobs,
         threads,
         |job| {

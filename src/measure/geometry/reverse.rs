@@ -1,10 +1,10 @@
 //! Reversibility: `N` steps with `h`, then `N` steps with `-h` from the
 //! synchronised end state; a time-symmetric scheme comes back to round-off.
 
-use super::Verdict;
 use crate::error::Error;
 use crate::ladder::check_cost;
-use crate::measure::energy::MAX_HALVINGS;
+use crate::measure::Verdict;
+use crate::measure::geometry::energy::MAX_HALVINGS;
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
@@ -112,15 +112,49 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
     } else {
         String::new()
     };
-    // a claim of time symmetry is refuted by one round trip that does not
-    // return; a claim that the scheme is not symmetric promises nothing
-    let (verdict, reason) = match (return_ulps, meta.symmetric) {
+    let (verdict, reason) = judge(
+        return_ulps,
+        meta.symmetric,
+        tolerance_ulps,
+        &halved,
+        &outcome,
+    );
+    Ok(ReverseRecord {
+        scheme: meta.id,
+        scene: scene.meta().id,
+        h,
+        steps,
+        outcome,
+        return_error,
+        return_ulps,
+        growth,
+        tolerance_ulps,
+        measured,
+        claimed: meta.symmetric,
+        verdict,
+        reason,
+    })
+}
+
+/// The verdict on a symmetry claim from the return error in ulps (`None`
+/// when the round trip blew up). A claim of time symmetry is refuted by one
+/// round trip that does not return; a claim that the scheme is not
+/// symmetric promises nothing.
+fn judge(
+    return_ulps: Option<f64>,
+    claimed_symmetric: bool,
+    tolerance_ulps: f64,
+    halved: &str,
+    outcome: &impl std::fmt::Display,
+) -> (Verdict, String) {
+    let measured = return_ulps.is_some_and(|u| u <= tolerance_ulps);
+    match (return_ulps, claimed_symmetric) {
         (None, true) => (
             Verdict::Inconclusive,
             format!(
                 "the round trip blew up ({outcome}) at {MAX_HALVINGS} halvings of the step: a \
-                 time-symmetric scheme returns only from stable steps; take a smaller step \
-                 (ReverseSpec::h)"
+             time-symmetric scheme returns only from stable steps; take a smaller step \
+             (ReverseSpec::h)"
             ),
         ),
         (None, false) => (
@@ -146,27 +180,12 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
                     Verdict::Pass,
                     format!(
                         "{found}: time-symmetric on this scene, which does not refute the claim \
-                         that the scheme is not"
+                     that the scheme is not"
                     ),
                 ),
             }
         }
-    };
-    Ok(ReverseRecord {
-        scheme: meta.id,
-        scene: scene.meta().id,
-        h,
-        steps,
-        outcome,
-        return_error,
-        return_ulps,
-        growth,
-        tolerance_ulps,
-        measured,
-        claimed: meta.symmetric,
-        verdict,
-        reason,
-    })
+    }
 }
 
 /// `steps` steps with `h` from `start`, then as many with `-h` from where

@@ -2,26 +2,29 @@
 //! whole suite). Exit status: 0 success, 1 a verdict failed, 2 bad input or
 //! an error, with a one-line message on stderr.
 
-use crate::case::case;
 use crate::error::Error;
 use crate::ladder::{AUTO_START, Ladder, LadderChoice};
 use crate::measure::Verdict;
-use crate::measure::energy::EnergySpec;
-use crate::measure::order::{OrderRecord, OrderSpec};
-use crate::measure::reverse::ReverseSpec;
+use crate::measure::accuracy::order::{OrderRecord, OrderSpec};
+use crate::measure::case::case;
+use crate::measure::geometry::energy::EnergySpec;
+use crate::measure::geometry::reverse::ReverseSpec;
+use crate::measure::geometry::symplectic::SymplecticSpec;
 use crate::measure::stability::{StabilityRecord, stability};
-use crate::measure::symplectic::SymplecticSpec;
+use crate::parallel::default_threads;
 use crate::report;
 use crate::scene::AnyScene;
 use crate::scheme::catalogue;
-use crate::suite::{default_threads, run_suite};
+use crate::suite::run_suite;
 use clap::{Args, Parser, Subcommand};
+use cost_commands::{LongrunArgs, RoundoffArgs, SpeedArgs, WorkArgs};
 use serde::Serialize;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-mod hard;
+mod cost_commands;
+mod hard_commands;
 
 /// Is your time integrator as accurate, stable and geometric as it claims?
 #[derive(Debug, Parser)]
@@ -60,15 +63,15 @@ enum Command {
     /// Orders and energy on eccentric Kepler orbits (e = 0.5, 0.6, 0.9, 0.99),
     /// and where a fixed step cannot resolve the pericentre (exit status 1
     /// when an order verdict fails).
-    Eccentric(hard::EccentricArgs),
+    Eccentric(hard_commands::EccentricArgs),
     /// How long each scheme follows the separatrix of the anharmonic well
     /// before falling back or escaping, against the step (exit status 1 when
     /// the following times disagree with the linearised theory).
-    Separatrix(hard::SeparatrixArgs),
+    Separatrix(hard_commands::SeparatrixArgs),
     /// Does each scheme tell an orbit just below the well's barrier from one
     /// just above it, and from which step down (exit status 1 when a scheme
     /// has no correct step)?
-    Escape(hard::EscapeArgs),
+    Escape(hard_commands::EscapeArgs),
     /// Find the steps z = h w0 for which a scheme is stable on the oscillator.
     Stability {
         /// Scheme id (see `stepladder list`).
@@ -113,7 +116,7 @@ struct CaseArgs {
 }
 
 impl CaseArgs {
-    fn case(&self) -> Result<Box<dyn crate::case::Case>, Error> {
+    fn case(&self) -> Result<Box<dyn crate::measure::case::Case>, Error> {
         case(&self.scheme, &AnyScene::parse(&self.scene)?)
     }
 }
@@ -159,7 +162,8 @@ struct ReportArgs {
     /// Worker threads (default: every core); results do not depend on it.
     #[arg(long)]
     threads: Option<usize>,
-    /// Also draw the figures (SVG) into this directory.
+    /// Where to draw the figures (SVG); default: `figures/` beside the report,
+    /// where the report's links point.
     #[arg(long)]
     figures: Option<PathBuf>,
 }
@@ -172,69 +176,6 @@ impl Default for ReportArgs {
             figures: None,
         }
     }
-}
-
-#[derive(Debug, Args)]
-struct RoundoffArgs {
-    /// Scene id, optionally with parameters (default harmonic).
-    #[arg(long, default_value = "harmonic")]
-    scene: String,
-    /// Only the pair of this scheme (plain or compensated id; default: all three).
-    #[arg(long)]
-    scheme: Option<String>,
-    /// Length of each run in periods (default 1).
-    #[arg(long, allow_negative_numbers = true)]
-    periods: Option<f64>,
-    /// Finest step of the ladder, in steps per period (default 2^24).
-    #[arg(long)]
-    max_steps: Option<u64>,
-    /// Print the record as JSON.
-    #[arg(long)]
-    json: bool,
-}
-
-#[derive(Debug, Args)]
-struct SpeedArgs {
-    /// Timed runs per scheme; the fastest is kept.
-    #[arg(long, default_value_t = crate::measure::cost::SPEED_REPEATS)]
-    repeats: usize,
-    /// Steps per timed run.
-    #[arg(long, default_value_t = crate::measure::cost::SPEED_STEPS)]
-    steps: u64,
-    /// Print the record as JSON.
-    #[arg(long)]
-    json: bool,
-}
-
-#[derive(Debug, Args)]
-struct LongrunArgs {
-    /// Scheme id: a Verlet form or its compensated variant (default: all six).
-    #[arg(long)]
-    scheme: Option<String>,
-    /// Scene id: harmonic (modified energy), kepler-circular or
-    /// kepler-eccentric (angular momentum); default harmonic.
-    #[arg(long, default_value = "harmonic")]
-    scene: String,
-    /// Steps of each run (default 2^22).
-    #[arg(long)]
-    steps: Option<u64>,
-    /// Print the records as JSON.
-    #[arg(long)]
-    json: bool,
-}
-
-#[derive(Debug, Args)]
-struct WorkArgs {
-    /// Scene id (see `stepladder list`), optionally with parameters:
-    /// `kepler-eccentric:e=0.9`.
-    #[arg(long)]
-    scene: String,
-    /// Worker threads (default: every core); results do not depend on it.
-    #[arg(long)]
-    threads: Option<usize>,
-    /// Print the record (and the timings) as JSON.
-    #[arg(long)]
-    json: bool,
 }
 
 /// Where the report goes unless told otherwise.
@@ -304,25 +245,22 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Order(args) => order(&args),
-        Command::Roundoff(args) => roundoff(&args),
-        Command::Longrun(args) => longrun(&args),
-        Command::Eccentric(a) => hard::eccentric(&a),
-        Command::Separatrix(a) => hard::separatrix(&a),
-        Command::Escape(a) => hard::escape(&a),
+        Command::Roundoff(args) => cost_commands::roundoff(&args),
+        Command::Longrun(args) => cost_commands::longrun(&args),
+        Command::Eccentric(a) => hard_commands::eccentric(&a),
+        Command::Separatrix(a) => hard_commands::separatrix(&a),
+        Command::Escape(a) => hard_commands::escape(&a),
         Command::Stability { scheme, json } => {
             let r = crate::scheme::visit_scheme(&scheme, StabilityOf)?;
             if json {
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&r).expect("plain data serialises")
-                );
+                print_json(&r);
             } else {
                 print!("{}", report::stability_table(std::slice::from_ref(&r)));
             }
             Ok(ExitCode::SUCCESS)
         }
-        Command::Speed(a) => speed(&a),
-        Command::Work(a) => work(&a),
+        Command::Speed(a) => cost_commands::speed(&a),
+        Command::Work(a) => cost_commands::work(&a),
         Command::Corpus { threads, json } => corpus(threads, json),
         Command::Energy(a) => {
             let r = a.case.case()?.energy(&EnergySpec {
@@ -393,10 +331,7 @@ fn emit<T: Serialize>(
     verdict: Verdict,
 ) -> Result<ExitCode, Error> {
     if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(record).expect("plain data serialises")
-        );
+        print_json(record);
     } else {
         println!("{}: {text}", verdict.name().to_uppercase());
     }
@@ -429,10 +364,12 @@ fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
         eprintln!();
     }
     report::write_atomically(&args.output, &report::render(&records))?;
-    if let Some(dir) = &args.figures {
-        let written = report::figures::write_figures(dir, &records)?;
-        eprintln!("{} figures written to {}", written.len(), dir.display());
-    }
+    let dir = args
+        .figures
+        .clone()
+        .unwrap_or_else(|| report::figures::beside(&args.output));
+    let written = report::figures::write_figures(&dir, &records)?;
+    eprintln!("{} figures written to {}", written.len(), dir.display());
     print!("{}", report::order_table(&records.order()));
     println!();
     print!("{}", report::geometry_table(&records.cases));
@@ -471,10 +408,7 @@ fn list(json: bool) {
             .collect(),
     };
     if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&listing).expect("plain data serialises")
-        );
+        print_json(&listing);
         return;
     }
     let mut t = report::Table::new(&[
@@ -537,10 +471,7 @@ fn order(args: &OrderArgs) -> Result<ExitCode, Error> {
         ladder,
     })?;
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&record).expect("plain data serialises")
-        );
+        print_json(&record);
     } else {
         print_order(&record);
     }
@@ -564,16 +495,14 @@ fn corpus(threads: Option<usize>, json: bool) -> Result<ExitCode, Error> {
             confusion: Confusion,
             outcomes: &'a [crate::corpus::Outcome],
         }
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&CorpusJson {
-                confusion: matrix,
-                outcomes: &outcomes,
-            })
-            .expect("records serialise")
-        );
+        print_json(&CorpusJson {
+            confusion: matrix,
+            outcomes: &outcomes,
+        });
     } else {
         print!("{}", report::corpus_section(&outcomes));
+        println!();
+        print!("{}", report::corpus_entries(&outcomes));
     }
     Ok(exit_for(matrix.wrong() == 0))
 }
@@ -618,124 +547,10 @@ fn print_order(r: &OrderRecord) {
     }
 }
 
-fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {
-    use crate::measure::roundoff::{RoundoffSpec, assemble, roundoff, study_pair};
-    let scene = AnyScene::parse(&args.scene)?;
-    let spec = RoundoffSpec {
-        periods: args.periods,
-        max_steps: args.max_steps,
-    };
-    let record = match &args.scheme {
-        Some(id) => assemble(&scene, &spec, vec![study_pair(&scene, id, &spec)?])?,
-        None => roundoff(&scene, &spec)?,
-    };
-    if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&record).expect("plain data serialises")
-        );
-    } else {
-        println!(
-            "{} ({}), {} periods, up to {} steps",
-            record.scene, record.scene_parameters, record.periods, record.max_steps
-        );
-        print!("{}", report::roundoff::floor_table(&record));
-        println!();
-        print!("{}", report::roundoff::law_table(&record));
-        for p in &record.pairs {
-            print!("{}", report::roundoff::pair_rungs(p));
-        }
-    }
-    Ok(ExitCode::SUCCESS)
-}
-
-fn speed(args: &SpeedArgs) -> Result<ExitCode, Error> {
-    if args.repeats == 0 {
-        return Err(Error::InvalidParameter {
-            name: "repeats",
-            value: 0.0,
-            expected: "at least 1",
-        });
-    }
-    if args.steps == 0 {
-        return Err(Error::InvalidParameter {
-            name: "steps",
-            value: 0.0,
-            expected: "at least 1",
-        });
-    }
-    let runs = args.repeats as u64 * (crate::scheme::scheme_ids().len() as u64 + 1);
-    crate::ladder::check_cost(args.steps.saturating_mul(runs))?;
-    let record = crate::measure::cost::speed(args.steps, args.repeats);
-    if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&record).expect("plain data serialises")
-        );
-    } else {
-        print!("{}", report::speed_table(&record));
-    }
-    Ok(ExitCode::SUCCESS)
-}
-
-fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
-    use crate::measure::longrun::{LongrunSpec, longrun_of};
-    let scene = AnyScene::parse(&args.scene)?;
-    let spec = LongrunSpec { steps: args.steps };
-    let ids = match &args.scheme {
-        Some(id) => vec![id.as_str()],
-        None => crate::scheme::compensated::pair_ids(),
-    };
-    // refuse the whole request up front, not after some runs
-    let per_scheme = args
-        .steps
-        .unwrap_or(crate::measure::longrun::DEFAULT_STEPS)
-        .saturating_mul(crate::measure::longrun::RUNS as u64);
-    crate::ladder::check_cost(per_scheme.saturating_mul(ids.len() as u64))?;
-    let records = ids
-        .into_iter()
-        .map(|id| longrun_of(&scene, id, &spec))
-        .collect::<Result<Vec<_>, _>>()?;
-    if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&records).expect("plain data serialises")
-        );
-    } else {
-        print!("{}", report::roundoff::longrun_table(&records));
-    }
-    Ok(ExitCode::SUCCESS)
-}
-
-/// The `work` command's JSON: the deterministic record and the timings.
-#[derive(Serialize)]
-struct WorkOutput {
-    #[serde(flatten)]
-    record: crate::work::WorkRecord,
-    timing: crate::work::WorkTiming,
-}
-
-fn work(args: &WorkArgs) -> Result<ExitCode, Error> {
-    if args.threads == Some(0) {
-        return Err(Error::InvalidParameter {
-            name: "threads",
-            value: 0.0,
-            expected: "at least 1",
-        });
-    }
-    let scene = AnyScene::parse(&args.scene)?;
-    let (record, timing) =
-        crate::work::work_on(&scene, args.threads.unwrap_or_else(default_threads))?;
-    if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&WorkOutput { record, timing })
-                .expect("plain data serialises")
-        );
-    } else {
-        print!("{}", report::work_scene(&record));
-        println!();
-        print!("{}", report::time_to_target_table(&timing));
-    }
-    Ok(ExitCode::SUCCESS)
+/// Prints a record as pretty JSON on stdout.
+pub(super) fn print_json<T: Serialize + ?Sized>(value: &T) {
+    println!(
+        "{}",
+        serde_json::to_string_pretty(value).expect("plain data serialises")
+    );
 }

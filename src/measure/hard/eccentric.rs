@@ -24,9 +24,9 @@
 //!   velocity Verlet and leap-frog, so its distance from them is round-off
 //!   alone, measured across the first full passage.
 
-use super::order::{OrderSpec, Rung, RungData, analyse, global_order};
 use crate::error::Error;
 use crate::ladder::{AutoLadder, LadderChoice, LadderEnd, steps_for};
+use crate::measure::accuracy::order::{Analysis, OrderSpec, Rung, RungData, analyse, global_order};
 use crate::run::{Outcome, integrate};
 use crate::scene::{KeplerEccentric, Scene};
 use crate::scheme::{Leapfrog, Scheme, StormerVerlet, VELOCITY_VERLET};
@@ -190,15 +190,7 @@ pub fn eccentric_order<M: Scheme>(
         (Some([_, b]), LadderEnd::Cap) => rungs.len() - 1 - b,
         _ => 0,
     };
-    let finals: Vec<RungData> = rungs
-        .iter()
-        .map(|r| RungData {
-            h: r.h,
-            error: r.final_error,
-            round_off: r.round_off_bound.unwrap_or(0.0),
-        })
-        .collect();
-    let final_analysis = analyse(&finals, scale);
+    let final_analysis = final_error_analysis(&rungs, scale);
     let ceiling = ERROR_CEILING * scale;
     let resolved = |r: &Rung| r.error.is_some_and(|x| x <= ceiling);
     let resolved_below = rungs
@@ -209,109 +201,35 @@ pub fn eccentric_order<M: Scheme>(
         .map(|r| r.h);
     let measured_order = record.measured_order;
     let theoretical = meta.order as f64;
-    let in_tau = |h: f64| short_ratio(peri.time_scale / h);
     let finest = rungs.last().map_or(f64::NAN, |r| r.h);
-    let cap_note = match stopped {
-        LadderEnd::Cap | LadderEnd::Fixed => format!(
-            "the ladder stopped at the cap of {max_rung_steps} steps a rung (h = {} = tau_p/{})",
-            short(finest),
-            in_tau(finest)
-        ),
-        LadderEnd::Floor if refined => "the ladder reached the round-off floor and was \
-                                         refined between its resolved rungs"
-            .to_string(),
-        LadderEnd::Floor => "the ladder reached the round-off floor".to_string(),
-    };
+    let cap_note = ladder_end_note(stopped, refined, max_rung_steps, finest, &peri);
     let final_note = final_analysis.fit.map_or(String::new(), |f| {
         format!("; the error at t_end alone falls as h^{:.2}", f.order)
     });
-    let left_note = match left_out {
-        0 => String::new(),
-        1 => " (the finest rung left out: round-off)".to_string(),
-        k => format!(" (the finest {k} rungs left out: round-off)"),
-    };
     let (status, reason) = match (record.fit, record.ci95, window) {
-        (Some(f), Some(ci), Some([a, b])) => {
-            let span = format!(
-                "over h = {} .. {} (tau_p/{} .. tau_p/{}){left_note}",
-                short(rungs[a].h),
-                short(rungs[b].h),
-                in_tau(rungs[a].h),
-                in_tau(rungs[b].h)
-            );
-            match tolerance::order_verdict(theoretical, f.order, ci) {
-                Ok(note) => (
-                    OrderStatus::Pass,
-                    format!(
-                        "order {:.3} in [{:.3}, {:.3}] {span}{}; {cap_note}",
-                        f.order,
-                        ci[0],
-                        ci[1],
-                        note.map_or(String::new(), |n| format!(": {n}"))
-                    ),
-                ),
-                Err(why) => (
-                    OrderStatus::Fail,
-                    format!(
-                        "{why}, {span}; the error falls more slowly than claimed at these \
-                         steps; {cap_note}{final_note}"
-                    ),
-                ),
-            }
-        }
-        _ if record.verdict == super::Verdict::Fail => {
+        (Some(f), Some(ci), Some(w)) => windowed_status(
+            theoretical,
+            (f.order, ci),
+            &rungs[w[0]..=w[1]],
+            left_out,
+            &peri,
+            &cap_note,
+            &final_note,
+        ),
+        _ if record.verdict == crate::measure::Verdict::Fail => {
             (OrderStatus::Fail, format!("{}; {cap_note}", record.reason))
         }
-        _ if resolved_below.is_none() => {
-            let fine: Vec<f64> = rungs
-                .iter()
-                .filter(|r| r.h <= peri.time_scale)
-                .filter_map(|r| r.error)
-                .map(|x| x / peri.speed_in_phase_units)
-                .collect();
-            let saturation = if fine.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    "; on the {} rungs finer than tau_p it lies between {:.2} and {:.2} v_p/w",
-                    fine.len(),
-                    fine.iter().copied().fold(f64::INFINITY, f64::min),
-                    fine.iter().copied().fold(0.0, f64::max)
-                )
-            };
-            (
-                OrderStatus::Unresolved,
-                format!(
-                    "unresolved: the largest error exceeds {ERROR_CEILING} of the orbit for every \
-                     step down to h = {} = tau_p/{} (tau_p = r_p/v_p = {}; the pericentre \
-                     speed is v_p/w = {:.3} in phase units){saturation}",
-                    short(finest),
-                    in_tau(finest),
-                    short(peri.time_scale),
-                    peri.speed_in_phase_units
-                ),
-            )
-        }
+        _ if resolved_below.is_none() => (
+            OrderStatus::Unresolved,
+            unresolved_reason(&rungs, &peri, finest),
+        ),
         _ => {
             let h = resolved_below.unwrap_or(f64::NAN);
-            let locals: Vec<String> = rungs
-                .iter()
-                .filter(|r| r.h <= h)
-                .filter_map(|r| r.local_order)
-                .map(|p| format!("{p:.2}"))
-                .collect();
             (
                 OrderStatus::PreAsymptotic,
                 format!(
-                    "resolved only below h = {} = tau_p/{}, and fewer than {MIN_WINDOW} rungs \
-                     there settle on one order (local orders {}); no verdict: {cap_note}{final_note}",
-                    short(h),
-                    in_tau(h),
-                    if locals.is_empty() {
-                        "-".to_string()
-                    } else {
-                        locals.join(", ")
-                    }
+                    "{}: {cap_note}{final_note}",
+                    pre_asymptotic_reason(&rungs, h, &peri)
                 ),
             )
         }
@@ -335,6 +253,138 @@ pub fn eccentric_order<M: Scheme>(
         rungs,
         steps,
     })
+}
+
+/// The ladder analysed on the error at `t_end` alone, as a second view
+/// beside the largest error over the run.
+fn final_error_analysis(rungs: &[Rung], scale: f64) -> Analysis {
+    let finals: Vec<RungData> = rungs
+        .iter()
+        .map(|r| RungData {
+            h: r.h,
+            error: r.final_error,
+            round_off: r.round_off_bound.unwrap_or(0.0),
+        })
+        .collect();
+    analyse(&finals, scale)
+}
+
+/// The verdict over a window of rungs (`window`, coarse to fine): the
+/// measured order and its interval against the claim.
+fn windowed_status(
+    theoretical: f64,
+    (order, ci): (f64, [f64; 2]),
+    window: &[Rung],
+    left_out: usize,
+    peri: &Pericentre,
+    cap_note: &str,
+    final_note: &str,
+) -> (OrderStatus, String) {
+    let in_tau = |h: f64| short_ratio(peri.time_scale / h);
+    let left_note = match left_out {
+        0 => String::new(),
+        1 => " (the finest rung left out: round-off)".to_string(),
+        k => format!(" (the finest {k} rungs left out: round-off)"),
+    };
+    let (first, last) = (window[0].h, window[window.len() - 1].h);
+    let span = format!(
+        "over h = {} .. {} (tau_p/{} .. tau_p/{}){left_note}",
+        short(first),
+        short(last),
+        in_tau(first),
+        in_tau(last)
+    );
+    match tolerance::order_verdict(theoretical, order, ci) {
+        Ok(note) => (
+            OrderStatus::Pass,
+            format!(
+                "order {order:.3} in [{:.3}, {:.3}] {span}{}; {cap_note}",
+                ci[0],
+                ci[1],
+                note.map_or(String::new(), |n| format!(": {n}"))
+            ),
+        ),
+        Err(why) => (
+            OrderStatus::Fail,
+            format!(
+                "{why}, {span}; the error falls more slowly than claimed at these \
+                 steps; {cap_note}{final_note}"
+            ),
+        ),
+    }
+}
+
+/// Why the ladder stopped where it did, in units of the pericentre time.
+fn ladder_end_note(
+    stopped: LadderEnd,
+    refined: bool,
+    max_rung_steps: u64,
+    finest: f64,
+    peri: &Pericentre,
+) -> String {
+    match stopped {
+        LadderEnd::Cap | LadderEnd::Fixed => format!(
+            "the ladder stopped at the cap of {max_rung_steps} steps a rung (h = {} = tau_p/{})",
+            short(finest),
+            short_ratio(peri.time_scale / finest)
+        ),
+        LadderEnd::Floor if refined => "the ladder reached the round-off floor and was \
+                                         refined between its resolved rungs"
+            .to_string(),
+        LadderEnd::Floor => "the ladder reached the round-off floor".to_string(),
+    }
+}
+
+/// No rung resolved the orbit: say how far down the ladder went and how large
+/// the error stayed on the rungs finer than the pericentre time.
+fn unresolved_reason(rungs: &[Rung], peri: &Pericentre, finest: f64) -> String {
+    let fine: Vec<f64> = rungs
+        .iter()
+        .filter(|r| r.h <= peri.time_scale)
+        .filter_map(|r| r.error)
+        .map(|x| x / peri.speed_in_phase_units)
+        .collect();
+    let saturation = if fine.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; on the {} rungs finer than tau_p it lies between {:.2} and {:.2} v_p/w",
+            fine.len(),
+            fine.iter().copied().fold(f64::INFINITY, f64::min),
+            fine.iter().copied().fold(0.0, f64::max)
+        )
+    };
+    format!(
+        "unresolved: the largest error exceeds {ERROR_CEILING} of the orbit for every \
+         step down to h = {} = tau_p/{} (tau_p = r_p/v_p = {}; the pericentre \
+         speed is v_p/w = {:.3} in phase units){saturation}",
+        short(finest),
+        short_ratio(peri.time_scale / finest),
+        short(peri.time_scale),
+        peri.speed_in_phase_units
+    )
+}
+
+/// Resolved below `h` but without a window of rungs on one order: list the
+/// local orders there.
+fn pre_asymptotic_reason(rungs: &[Rung], h: f64, peri: &Pericentre) -> String {
+    let locals: Vec<String> = rungs
+        .iter()
+        .filter(|r| r.h <= h)
+        .filter_map(|r| r.local_order)
+        .map(|p| format!("{p:.2}"))
+        .collect();
+    format!(
+        "resolved only below h = {} = tau_p/{}, and fewer than {MIN_WINDOW} rungs \
+         there settle on one order (local orders {}); no verdict",
+        short(h),
+        short_ratio(peri.time_scale / h),
+        if locals.is_empty() {
+            "-".to_string()
+        } else {
+            locals.join(", ")
+        }
+    )
 }
 
 /// Where Euler-Cromer's first-order error overtakes the second-order one of
@@ -500,49 +550,7 @@ pub fn eccentric_energy<M: Scheme>(
     let offset = apocentre.first().copied();
     let change = (apocentre.len() >= 2)
         .then(|| (apocentre[apocentre.len() - 1] - apocentre[0]) / (apocentre.len() - 1) as f64);
-    let (class, reason) = match (lost_at, offset, change) {
-        (Some(t), _, _) => (
-            OrbitEnergy::Lost,
-            format!(
-                "orbit lost at t = {t:.4} ({})",
-                if unbound.is_some() {
-                    "energy reached zero: unbound"
-                } else {
-                    "the run blew up or a step failed"
-                }
-            ),
-        ),
-        (None, Some(offset), Some(change)) => {
-            let total = (change * (apocentre.len() - 1) as f64).abs();
-            let allowed = ECCENTRIC_DRIFT_FRACTION * offset.abs() + round_off_energy(taken);
-            if total > allowed {
-                (
-                    OrbitEnergy::Drifting,
-                    format!(
-                        "the apocentre energy changes by {change:.2e} of |E0| per orbit \
-                         ({total:.2e} over {} orbits, against an offset of {offset:.2e})",
-                        apocentre.len() - 1
-                    ),
-                )
-            } else {
-                (
-                    OrbitEnergy::Bounded,
-                    format!(
-                        "the apocentre energy stays {offset:.2e} of |E0| from E0 within {total:.2e} \
-                         over {} orbits",
-                        apocentre.len() - 1
-                    ),
-                )
-            }
-        }
-        _ => (
-            OrbitEnergy::Lost,
-            format!(
-                "fewer than two apocentre passages in {periods} periods: the orbit no longer \
-                 returns"
-            ),
-        ),
-    };
+    let (class, reason) = classify(lost_at, unbound.is_some(), &apocentre, taken, periods);
     Ok(EccentricEnergyRecord {
         scheme: scheme.meta().id,
         pericentre: peri,
@@ -559,6 +567,65 @@ pub fn eccentric_energy<M: Scheme>(
         class,
         reason,
     })
+}
+
+/// The orbit's energy class from the energy offsets at successive
+/// apocentres: lost when it became unbound or blew up, drifting when the
+/// apocentre energy moves by more than ECCENTRIC_DRIFT_FRACTION of its offset
+/// plus round-off over the run, bounded otherwise.
+fn classify(
+    lost_at: Option<f64>,
+    unbound: bool,
+    apocentre: &[f64],
+    taken: u64,
+    periods: f64,
+) -> (OrbitEnergy, String) {
+    let offset = apocentre.first().copied();
+    let change = (apocentre.len() >= 2)
+        .then(|| (apocentre[apocentre.len() - 1] - apocentre[0]) / (apocentre.len() - 1) as f64);
+    match (lost_at, offset, change) {
+        (Some(t), _, _) => (
+            OrbitEnergy::Lost,
+            format!(
+                "orbit lost at t = {t:.4} ({})",
+                if unbound {
+                    "energy reached zero: unbound"
+                } else {
+                    "the run blew up or a step failed"
+                }
+            ),
+        ),
+        (None, Some(offset), Some(change)) => {
+            let total = (change * (apocentre.len() - 1) as f64).abs();
+            let allowed = ECCENTRIC_DRIFT_FRACTION * offset.abs() + round_off_energy(taken);
+            if total > allowed {
+                (
+                    OrbitEnergy::Drifting,
+                    format!(
+                        "the apocentre energy changes by {change:.2e} of |E0| per orbit \
+                     ({total:.2e} over {} orbits, against an offset of {offset:.2e})",
+                        apocentre.len() - 1
+                    ),
+                )
+            } else {
+                (
+                    OrbitEnergy::Bounded,
+                    format!(
+                        "the apocentre energy stays {offset:.2e} of |E0| from E0 within {total:.2e} \
+                     over {} orbits",
+                        apocentre.len() - 1
+                    ),
+                )
+            }
+        }
+        _ => (
+            OrbitEnergy::Lost,
+            format!(
+                "fewer than two apocentre passages in {periods} periods: the orbit no longer \
+             returns"
+            ),
+        ),
+    }
 }
 
 /// The round-off of the two-step Störmer form (and of leap-frog), measured

@@ -2,8 +2,8 @@
 //! its exact solution must satisfy the equations of motion. A scene that
 //! fails here would judge every scheme against a wrong answer.
 
-use super::Verdict;
-use super::tangent::{acceleration_jacobian, potential_gradient};
+use crate::measure::Verdict;
+use crate::measure::geometry::tangent::{acceleration_jacobian, potential_gradient};
 use crate::scene::Scene;
 use crate::tolerance::SCENE_TOLERANCE;
 use nalgebra::SVector;

@@ -4,8 +4,10 @@
 //! stored by job, so the records do not depend on the thread count.
 
 use crate::error::Error;
-use crate::measure::longrun::{LongrunRecord, LongrunSpec, longrun_of};
-use crate::measure::roundoff::{PairRecord, RoundoffRecord, RoundoffSpec, assemble, study_pair};
+use crate::measure::roundoff::floor::{
+    PairRecord, RoundoffRecord, RoundoffSpec, assemble, study_pair,
+};
+use crate::measure::roundoff::longrun::{LongrunRecord, LongrunSpec, longrun_of};
 use crate::scene::{AnyScene, Harmonic, KeplerCircular};
 use crate::scheme::compensated::{pair_ids, paired_ids};
 use std::time::{Duration, Instant};
@@ -74,7 +76,7 @@ pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
     for (i, _) in longs.iter().enumerate() {
         jobs.extend(pair_ids().into_iter().map(|id| Job::Long(i, id)));
     }
-    let results = crate::suite::parallel_map(
+    let results = crate::parallel::parallel_map(
         &jobs,
         threads,
         |job| match *job {

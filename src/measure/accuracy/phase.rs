@@ -1,7 +1,7 @@
 //! Phase error on the harmonic oscillator: the frequency of the numerical
 //! one-step map against `w0`, and its leading term against the analytic one.
 
-use super::Verdict;
+use crate::measure::Verdict;
 use crate::scene::Harmonic;
 use crate::scheme::{PhaseError, Scheme};
 use crate::state::State;

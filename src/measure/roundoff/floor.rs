@@ -40,9 +40,9 @@
 //! `(1 + 2/g)` times the truncation error alone: a floor `5 C h*^2` for
 //! `g = 1/2`, `7/3 C h*^2` for `g = 3/2`.
 
-use super::fit::{PowerLaw, power_law};
 use crate::error::Error;
 use crate::ladder::{check_cost, steps_for};
+use crate::measure::accuracy::fit::{PowerLaw, power_law};
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::Scheme;
 use crate::scheme::compensated::{PairVisitor, paired_ids, visit_pair};

@@ -12,15 +12,15 @@
 //! neither property promises nothing, so it is never refuted; the record
 //! says what was measured.
 
-use super::Verdict;
-use super::fit::power_law;
 use crate::error::Error;
 use crate::ladder::{check_cost, steps_for};
+use crate::measure::Verdict;
+use crate::measure::accuracy::fit::power_law;
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::tolerance::{
-    GROWTH_DECADES, LOST_FRACTION, LOST_GROWTH, classify_growth, round_off_energy,
+    BOUNDED_BELOW, GROWTH_DECADES, LOST_FRACTION, LOST_GROWTH, RANDOM_WALK_BELOW, round_off_energy,
 };
 use serde::Serialize;
 
@@ -245,206 +245,347 @@ fn energy_at<M: Scheme, S: Scene<D>, const D: usize>(
     halvings: u32,
     periods: f64,
 ) -> Result<EnergyRecord, Error> {
-    let period = scene.period();
     let meta = scheme.meta();
-    let conserves = meta.symplectic || meta.symmetric;
     let periods = periods / f64::from(1u32 << halvings);
-    let t_end = periods * period;
+    let t_end = periods * scene.period();
     let steps = steps_for(t_end, h)?;
     check_cost(steps)?;
+    let trace = trace_energy(scheme, scene, h, steps, t_end);
+    let lost_at = trace.lost_at();
+    let growth = trace.growth_law(h);
+    let class = trace.class(lost_at, growth.exponent);
+    let claims = Claims::of(meta.symplectic, meta.symmetric);
+    let measured = trace.describe(lost_at, class, growth.exponent);
+    let (verdict, reason) = claims.judge(&trace, lost_at, class, &measured);
+    let (verdict, reason) = at_resolving_step(claims.conserves, verdict, reason, h, halvings);
+    Ok(EnergyRecord {
+        scheme: meta.id,
+        scene: scene.meta().id,
+        h,
+        steps: trace.taken,
+        periods,
+        outcome: trace.outcome,
+        initial_energy: trace.e0,
+        max_relative_energy_error: trace.running,
+        largest_step_change: trace.largest_step_change,
+        final_relative_energy_error: trace.last,
+        lost_at,
+        growth_exponent: growth.exponent,
+        fit_range: growth.range,
+        class,
+        expected: claims.expected(),
+        verdict,
+        reason,
+        summary: measured,
+        samples: trace.samples,
+    })
+}
+
+/// What one run records of its energy error.
+struct EnergyTrace {
+    outcome: Outcome,
+    e0: f64,
+    /// `(t, running maximum of |E - E0| / norm)` at log-spaced times
+    samples: Vec<[f64; 2]>,
+    /// `(t, running maximum of |E - E(T)| / norm)` after the first period
+    /// `T`: the growth law is fitted to it, so that a jump in the first
+    /// period (a coarse step through a pericentre) cannot mask a drift
+    drift_samples: Vec<(f64, f64)>,
+    running: f64,
+    last: f64,
+    taken: u64,
+    t_first: f64,
+    /// the running maximum when the first period ended
+    after_one_period: Option<f64>,
+    /// when the error first passed [`LOST_FRACTION`]
+    past_lost_fraction: Option<f64>,
+    /// when a bound orbit's energy reached zero
+    unbound: Option<f64>,
+    /// the largest change in one step, and when
+    largest_step_change: [f64; 2],
+}
+
+/// Runs `steps` steps of `h` and samples the energy error at log-spaced
+/// times from 10 steps to `t_end`.
+fn trace_energy<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    h: f64,
+    steps: u64,
+    t_end: f64,
+) -> EnergyTrace {
+    let period = scene.period();
     let start = scene.initial();
     let e0 = scene.energy(&start);
     let norm = energy_norm(scene);
-
-    // log-spaced sample times from 10 steps to the end
-    let (t_first, ratio) = (
-        10.0 * h,
-        (t_end / (10.0 * h)).powf(1.0 / (SAMPLES - 1) as f64),
-    );
+    let t_first = 10.0 * h;
+    let ratio = (t_end / t_first).powf(1.0 / (SAMPLES - 1) as f64);
     let mut next_sample = t_first;
-    let mut samples: Vec<[f64; 2]> = Vec::with_capacity(SAMPLES + 1);
-    let (mut running, mut last, mut taken) = (0.0f64, 0.0, 0);
-    // the energy after the first period, and the running maximum of the
-    // change since: the growth law is fitted to it, so that a jump in the
-    // first period (a coarse step through a pericentre) cannot mask a drift
-    let (mut e_reference, mut drift) = (None, 0.0f64);
-    let mut drift_samples: Vec<(f64, f64)> = Vec::with_capacity(SAMPLES + 1);
-    let (mut past_lost_fraction, mut after_one_period, mut unbound) = (None, None, None);
-    let (mut previous, mut largest_step_change) = (e0, [0.0f64, 0.0]);
+    let mut trace = EnergyTrace {
+        outcome: Outcome::Completed,
+        e0,
+        samples: Vec::with_capacity(SAMPLES + 1),
+        drift_samples: Vec::with_capacity(SAMPLES + 1),
+        running: 0.0,
+        last: 0.0,
+        taken: 0,
+        t_first,
+        after_one_period: None,
+        past_lost_fraction: None,
+        unbound: None,
+        largest_step_change: [0.0, 0.0],
+    };
+    let (mut previous, mut e_reference, mut drift) = (e0, None, 0.0f64);
     let outcome = integrate(scheme, scene, &start, h, steps, |n, t, s| {
         let e = scene.energy(s);
         let err = (e - e0).abs() / norm;
         let change = (e - previous).abs() / norm;
-        if change > largest_step_change[0] {
-            largest_step_change = [change, t];
+        if change > trace.largest_step_change[0] {
+            trace.largest_step_change = [change, t];
         }
         previous = e;
         // a bound orbit (E0 < 0, as for Kepler) whose energy reaches zero has escaped
-        if unbound.is_none() && e0 < 0.0 && e >= 0.0 {
-            unbound = Some(t);
+        if trace.unbound.is_none() && e0 < 0.0 && e >= 0.0 {
+            trace.unbound = Some(t);
         }
-        running = running.max(err);
-        last = err;
-        taken = n;
-        if past_lost_fraction.is_none() && running > LOST_FRACTION {
-            past_lost_fraction = Some(t);
+        trace.running = trace.running.max(err);
+        trace.last = err;
+        trace.taken = n;
+        if trace.past_lost_fraction.is_none() && trace.running > LOST_FRACTION {
+            trace.past_lost_fraction = Some(t);
         }
-        if after_one_period.is_none() && t >= period {
-            after_one_period = Some(running);
+        if trace.after_one_period.is_none() && t >= period {
+            trace.after_one_period = Some(trace.running);
             e_reference = Some(e);
         }
         if let Some(reference) = e_reference {
             drift = drift.max((e - reference).abs() / norm);
         }
         if t >= next_sample {
-            samples.push([t, running]);
+            trace.samples.push([t, trace.running]);
             if e_reference.is_some() {
-                drift_samples.push((t, drift));
+                trace.drift_samples.push((t, drift));
             }
             while next_sample <= t {
                 next_sample *= ratio;
             }
         }
     });
+    trace.outcome = outcome;
+    trace
+}
 
-    // The orbit is lost when a bound orbit escapes, or when an error of the
-    // order of the energy itself was still growing after the first period
-    // (when a bounded error has sampled its whole oscillation): however flat
-    // the error then looks (Euler's expanding Kepler orbit approaches E = 0
-    // from below), the energy was not conserved.
-    let lost_at = unbound
-        .or(past_lost_fraction
-            .filter(|_| after_one_period.is_some_and(|m| running > LOST_GROWTH * m)));
-    // fit the last GROWTH_DECADES decades of the run
-    let t_stop = taken as f64 * h;
-    let t_from = t_stop / 10f64.powf(GROWTH_DECADES);
-    let growth_samples: Vec<(f64, f64)> = if drift_samples.len() >= 3 {
-        drift_samples
-    } else {
-        samples.iter().map(|&[t, m]| (t, m)).collect()
-    };
-    let window: Vec<(f64, f64)> = growth_samples
-        .iter()
-        .copied()
-        .filter(|&(t, m)| t >= t_from && t <= t_stop && m > 0.0)
-        .collect();
-    let all_zero = growth_samples.iter().all(|&(_, m)| m == 0.0);
-    let fit = power_law(&window);
-    let growth_exponent = if all_zero {
-        Some(0.0)
-    } else {
-        fit.map(|f| f.slope)
-    };
-    let class = if !outcome.completed() || lost_at.is_some() {
-        // an orbit destroyed or blown up has not conserved energy, whatever
-        // the slope just before
-        Some(EnergyClass::Drifting)
-    } else {
+/// A growth law `max|dE| ~ t^g` fitted over the end of a run.
+struct GrowthLaw {
+    exponent: Option<f64>,
+    range: Option<[f64; 2]>,
+}
+
+impl EnergyTrace {
+    /// The orbit is lost when a bound orbit escapes, or when an error of
+    /// the order of the energy itself was still growing after the first
+    /// period (when a bounded error has sampled its whole oscillation):
+    /// however flat the error then looks (Euler's expanding Kepler orbit
+    /// approaches E = 0 from below), the energy was not conserved.
+    fn lost_at(&self) -> Option<f64> {
+        self.unbound.or(self.past_lost_fraction.filter(|_| {
+            self.after_one_period
+                .is_some_and(|m| self.running > LOST_GROWTH * m)
+        }))
+    }
+
+    /// The growth law over the last [`GROWTH_DECADES`] decades of the run.
+    fn growth_law(&self, h: f64) -> GrowthLaw {
+        let t_stop = self.taken as f64 * h;
+        let t_from = t_stop / 10f64.powf(GROWTH_DECADES);
+        let growth_samples: Vec<(f64, f64)> = if self.drift_samples.len() >= 3 {
+            self.drift_samples.clone()
+        } else {
+            self.samples.iter().map(|&[t, m]| (t, m)).collect()
+        };
+        let window: Vec<(f64, f64)> = growth_samples
+            .iter()
+            .copied()
+            .filter(|&(t, m)| t >= t_from && t <= t_stop && m > 0.0)
+            .collect();
+        let fit = power_law(&window);
+        let exponent = if growth_samples.iter().all(|&(_, m)| m == 0.0) {
+            Some(0.0)
+        } else {
+            fit.map(|f| f.slope)
+        };
+        GrowthLaw {
+            exponent,
+            range: fit.map(|_| [t_from.max(self.t_first), t_stop]),
+        }
+    }
+
+    fn class(&self, lost_at: Option<f64>, growth_exponent: Option<f64>) -> Option<EnergyClass> {
+        if !self.outcome.completed() || lost_at.is_some() {
+            // an orbit destroyed or blown up has not conserved energy,
+            // whatever the slope just before
+            return Some(EnergyClass::Drifting);
+        }
         // growth within what round-off alone can produce is round-off,
         // whatever its exponent: a random walk of eps a step, or at worst a
         // linear sum when rounding is biased
         growth_exponent.map(classify_growth).map(|c| {
-            if c != EnergyClass::Bounded && running <= round_off_energy(taken) {
+            if c != EnergyClass::Bounded && self.running <= round_off_energy(self.taken) {
                 EnergyClass::RandomWalk
             } else {
                 c
             }
         })
-    };
-    let expected = if conserves {
-        EnergyClass::Bounded
-    } else {
-        EnergyClass::Drifting
-    };
-    let claims = match (meta.symplectic, meta.symmetric) {
-        (true, true) => "a symplectic, symmetric scheme",
-        (true, false) => "a symplectic scheme",
-        (false, true) => "a symmetric scheme",
-        (false, false) => "a scheme neither symplectic nor symmetric",
-    };
-    let measured = match (class, growth_exponent) {
-        _ if !outcome.completed() => {
-            format!("{outcome}: the energy grew by {running:.2e} of E0 before")
+    }
+
+    /// One line on what was measured.
+    fn describe(
+        &self,
+        lost_at: Option<f64>,
+        class: Option<EnergyClass>,
+        growth_exponent: Option<f64>,
+    ) -> String {
+        let running = self.running;
+        match (class, growth_exponent) {
+            _ if !self.outcome.completed() => {
+                format!(
+                    "{}: the energy grew by {running:.2e} of E0 before",
+                    self.outcome
+                )
+            }
+            _ if lost_at.is_some() => format!(
+                "orbit lost at t = {:.4} (escaped, or an energy error past {LOST_FRACTION} of E0 \
+                 that kept growing), to {running:.2e}",
+                lost_at.unwrap_or_default(),
+            ),
+            (Some(c), g) => format!(
+                "{}{}, max relative error {running:.2e}",
+                c.name(),
+                g.map_or(String::new(), |g| format!(" (g = {g:.2})")),
+            ),
+            (None, _) => "too few samples to fit a growth law".to_string(),
         }
-        _ if lost_at.is_some() => format!(
-            "orbit lost at t = {:.4} (escaped, or an energy error past {LOST_FRACTION} of E0 \
-             that kept growing), to {running:.2e}",
-            lost_at.unwrap_or_default(),
+    }
+}
+
+/// What a scheme's two geometric claims promise of its energy.
+struct Claims {
+    conserves: bool,
+    name: &'static str,
+}
+
+impl Claims {
+    fn of(symplectic: bool, symmetric: bool) -> Self {
+        let name = match (symplectic, symmetric) {
+            (true, true) => "a symplectic, symmetric scheme",
+            (true, false) => "a symplectic scheme",
+            (false, true) => "a symmetric scheme",
+            (false, false) => "a scheme neither symplectic nor symmetric",
+        };
+        Claims {
+            conserves: symplectic || symmetric,
+            name,
+        }
+    }
+
+    fn expected(&self) -> EnergyClass {
+        if self.conserves {
+            EnergyClass::Bounded
+        } else {
+            EnergyClass::Drifting
+        }
+    }
+
+    /// The verdict on one run: a conserving claim is refuted by drift, by a
+    /// wander above round-off or by a lost orbit; a claim of neither
+    /// property by nothing.
+    fn judge(
+        &self,
+        trace: &EnergyTrace,
+        lost_at: Option<f64>,
+        class: Option<EnergyClass>,
+        measured: &str,
+    ) -> (Verdict, String) {
+        let (conserves, claims) = (self.conserves, self.name);
+        let completed = trace.outcome.completed();
+        let round_off = round_off_energy(trace.taken);
+        match class {
+            // a blow-up at this step, before the orbit was lost to a growing
+            // error, says nothing about conservation below the scheme's
+            // stability limit (past it even an area-preserving map grows
+            // exponentially); an orbit lost first was not conserved
+            _ if conserves && !completed && lost_at.is_none() => (
+                Verdict::Inconclusive,
+                format!(
+                    "{measured}; {claims} conserves energy only at stable steps: take a smaller \
+                     step (EnergySpec::h), or check that the scene's period is its shortest \
+                     time scale"
+                ),
+            ),
+            _ if conserves && !completed => (
+                Verdict::Fail,
+                format!("{measured}: {claims} must not drift"),
+            ),
+            Some(EnergyClass::Drifting) if conserves => (
+                Verdict::Fail,
+                format!("{measured}: {claims} must not drift"),
+            ),
+            // a symplectic map's energy error is bounded; one that wanders
+            // like a random walk far above what round-off can do is not
+            // conserved
+            Some(EnergyClass::RandomWalk) if conserves && trace.running > round_off => (
+                Verdict::Fail,
+                format!(
+                    "{measured}, above what round-off can produce ({round_off:.2e}): {claims} \
+                     must not wander"
+                ),
+            ),
+            Some(_) if conserves => (
+                Verdict::Pass,
+                format!("{measured}: no secular drift, as {claims} promises"),
+            ),
+            Some(EnergyClass::Drifting) => (
+                Verdict::Pass,
+                format!("{measured}, as expected of {claims}"),
+            ),
+            Some(EnergyClass::RandomWalk) => (
+                Verdict::Pass,
+                format!(
+                    "{measured}: no drift resolved above round-off; {claims} may drift below \
+                     it (reported, not a refutation)"
+                ),
+            ),
+            Some(EnergyClass::Bounded) => (
+                Verdict::Pass,
+                format!(
+                    "{measured} on this scene; {claims} promises nothing, so one scene where \
+                     the energy happens to stay bounded refutes nothing"
+                ),
+            ),
+            None => (Verdict::Inconclusive, measured.to_string()),
+        }
+    }
+}
+
+/// Says at which step a verdict was reached when the default step was
+/// halved, and makes a conservation claim inconclusive when even the finest
+/// step did not resolve the motion.
+fn at_resolving_step(
+    conserves: bool,
+    verdict: Verdict,
+    reason: String,
+    h: f64,
+    halvings: u32,
+) -> (Verdict, String) {
+    let reason = match verdict {
+        Verdict::Pass | Verdict::Fail if halvings > 0 => format!(
+            "{reason} (at h = {h:.3e}, {halvings} halving{} of the default step, the first \
+             step whose energy excursion over one period is within {RESOLVED_EXCURSION} of E0)",
+            if halvings > 1 { "s" } else { "" }
         ),
-        (Some(c), g) => format!(
-            "{}{}, max relative error {running:.2e}",
-            c.name(),
-            g.map_or(String::new(), |g| format!(" (g = {g:.2})")),
-        ),
-        (None, _) => "too few samples to fit a growth law".to_string(),
+        _ => reason,
     };
-    let (verdict, reason) = match class {
-        // a blow-up at this step, before the orbit was lost to a growing
-        // error, says nothing about conservation below the scheme's
-        // stability limit (past it even an area-preserving map grows
-        // exponentially); an orbit lost first was not conserved
-        _ if conserves && !outcome.completed() && lost_at.is_none() => (
-            Verdict::Inconclusive,
-            format!(
-                "{measured}; {claims} conserves energy only at stable steps: take a smaller \
-                 step (EnergySpec::h), or check that the scene's period is its shortest time \
-                 scale"
-            ),
-        ),
-        _ if conserves && !outcome.completed() => (
-            Verdict::Fail,
-            format!("{measured}: {claims} must not drift"),
-        ),
-        Some(EnergyClass::Drifting) if conserves => (
-            Verdict::Fail,
-            format!("{measured}: {claims} must not drift"),
-        ),
-        // a symplectic map's energy error is bounded; one that wanders like
-        // a random walk far above what round-off can do is not conserved
-        Some(EnergyClass::RandomWalk) if conserves && running > round_off_energy(taken) => (
-            Verdict::Fail,
-            format!(
-                "{measured}, above what round-off can produce ({:.2e}): {claims} must not wander",
-                round_off_energy(taken)
-            ),
-        ),
-        Some(_) if conserves => (
-            Verdict::Pass,
-            format!("{measured}: no secular drift, as {claims} promises"),
-        ),
-        Some(EnergyClass::Drifting) => (
-            Verdict::Pass,
-            format!("{measured}, as expected of {claims}"),
-        ),
-        Some(EnergyClass::RandomWalk) => (
-            Verdict::Pass,
-            format!(
-                "{measured}: no drift resolved above round-off; {claims} may drift below it \
-                 (reported, not a refutation)"
-            ),
-        ),
-        Some(EnergyClass::Bounded) => (
-            Verdict::Pass,
-            format!(
-                "{measured} on this scene; {claims} promises nothing, so one scene where the \
-                 energy happens to stay bounded refutes nothing"
-            ),
-        ),
-        None => (Verdict::Inconclusive, measured.clone()),
-    };
-    let (verdict, reason) = match (halvings, verdict) {
-        (k, Verdict::Pass | Verdict::Fail) if k > 0 => (
-            verdict,
-            format!(
-                "{reason} (at h = {h:.3e}, {k} halving{} of the default step, the first \
-                 step whose energy excursion over one period is within {RESOLVED_EXCURSION} of \
-                 E0)",
-                if k > 1 { "s" } else { "" }
-            ),
-        ),
-        _ => (verdict, reason),
-    };
-    let (verdict, reason) = if conserves && halvings >= MAX_HALVINGS {
+    if conserves && halvings >= MAX_HALVINGS {
         (
             Verdict::Inconclusive,
             format!(
@@ -455,26 +596,18 @@ fn energy_at<M: Scheme, S: Scene<D>, const D: usize>(
         )
     } else {
         (verdict, reason)
-    };
-    Ok(EnergyRecord {
-        scheme: meta.id,
-        scene: scene.meta().id,
-        h,
-        steps: taken,
-        periods,
-        outcome,
-        initial_energy: e0,
-        max_relative_energy_error: running,
-        largest_step_change,
-        final_relative_energy_error: last,
-        lost_at,
-        growth_exponent,
-        fit_range: fit.map(|_| [t_from.max(t_first), t_stop]),
-        class,
-        expected,
-        verdict,
-        reason,
-        summary: measured,
-        samples,
-    })
+    }
+}
+
+/// The energy class of a growth exponent `g`: the boundaries sit halfway
+/// between the three laws, `g = 0` (bounded), `1/2` (random walk) and `1`
+/// (drift).
+pub fn classify_growth(g: f64) -> EnergyClass {
+    if g < BOUNDED_BELOW {
+        EnergyClass::Bounded
+    } else if g < RANDOM_WALK_BELOW {
+        EnergyClass::RandomWalk
+    } else {
+        EnergyClass::Drifting
+    }
 }

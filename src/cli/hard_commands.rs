@@ -1,18 +1,18 @@
 //! The hard cases on the command line: `eccentric`, `separatrix`, `escape`.
 
-use super::exit_for;
+use super::{exit_for, print_json};
 use crate::error::Error;
-use crate::hard::{ESCAPE_DELTAS, HardCases, HardJob, run_hard_jobs};
-use crate::measure::eccentric::{
+use crate::measure::hard::eccentric::{
     ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, ORDER_SCHEMES, OrderStatus,
     RoundOffRecord,
 };
-use crate::measure::escape::{EscapeRecord, EscapeSpec};
-use crate::measure::following::{FollowingRecord, WellSpec};
+use crate::measure::hard::escape::{EscapeRecord, EscapeSpec};
+use crate::measure::hard::following::{FollowingRecord, WellSpec};
+use crate::parallel::default_threads;
 use crate::report;
 use crate::scene::{KeplerEccentric, Separatrix};
 use crate::scheme::scheme_ids;
-use crate::suite::default_threads;
+use crate::suite::hard_cases::{ESCAPE_DELTAS, HardCases, HardJob, run_hard_jobs};
 use crate::tolerance::ECCENTRIC_MAX_RUNG_STEPS;
 use clap::Args;
 use serde::Serialize;
@@ -83,13 +83,6 @@ fn schemes(asked: &Option<String>, default: &[&'static str]) -> Result<Vec<&'sta
         Some(id) => Ok(vec![scheme_id(id)?]),
         None => Ok(default.to_vec()),
     }
-}
-
-fn print_json<T: Serialize + ?Sized>(value: &T) {
-    println!(
-        "{}",
-        serde_json::to_string_pretty(value).expect("plain data serialises")
-    );
 }
 
 #[derive(Serialize)]

@@ -30,14 +30,15 @@
 //! `1/(h w)` times larger. The compensated variants lose only `u h w` of each
 //! quantity per step: the same random walk, `h w` times smaller.
 
-use super::fit::power_law;
 use crate::error::Error;
 use crate::ladder::check_cost;
-use crate::measure::energy::EnergyClass;
+use crate::measure::accuracy::fit::power_law;
+use crate::measure::geometry::energy::EnergyClass;
+use crate::measure::geometry::energy::classify_growth;
 use crate::scene::{AnyScene, Harmonic, KeplerCircular, KeplerEccentric, Scene};
 use crate::scheme::Scheme;
 use crate::scheme::compensated::{PairVisitor, pair_ids, visit_pair};
-use crate::tolerance::{GROWTH_DECADES, classify_growth};
+use crate::tolerance::GROWTH_DECADES;
 use serde::Serialize;
 
 /// Default step, in periods of the scene: 100 steps a period.

@@ -2,21 +2,26 @@
 //! Cases run in parallel on scoped threads, but results are stored by case,
 //! so the records are the same whatever the thread count.
 
-use crate::case::{Case, case};
 use crate::error::Error;
-use crate::hard::{HardCases, hard_jobs, run_hard_jobs};
+use crate::measure::case::{Case, case};
+
+pub mod hard_cases;
+pub mod round_off;
+pub mod work_precision;
+
 use crate::measure::Verdict;
-use crate::measure::energy::{EnergyRecord, EnergySpec};
-use crate::measure::order::{OrderRecord, OrderSpec};
-use crate::measure::phase::{PhaseRecord, phase_error};
-use crate::measure::reverse::{ReverseRecord, ReverseSpec};
-use crate::measure::scene_check::{SceneCheck, check_scene};
+use crate::measure::accuracy::order::{OrderRecord, OrderSpec};
+use crate::measure::accuracy::phase::{PhaseRecord, phase_error};
+use crate::measure::accuracy::scene_check::{SceneCheck, check_scene};
+use crate::measure::accuracy::trajectory::{TrajectoryRecord, earth_sun_experiments};
+use crate::measure::geometry::energy::{EnergyRecord, EnergySpec};
+use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec};
+use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec};
 use crate::measure::stability::{StabilityRecord, stability};
-use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec};
-use crate::measure::trajectory::{TrajectoryRecord, earth_sun_experiments};
-pub use crate::parallel::{default_threads, parallel_map};
+use crate::parallel::parallel_map;
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
+use crate::suite::hard_cases::{HardCases, hard_jobs, run_hard_jobs};
 use std::time::{Duration, Instant};
 
 /// Every record of one scheme on one scene.
@@ -52,19 +57,19 @@ pub struct SuiteRecords {
     pub earth_sun: Vec<TrajectoryRecord>,
     /// Round-off floors and long runs of the Verlet forms and their
     /// compensated variants.
-    pub roundoff: crate::roundoff_suite::RoundoffRecords,
+    pub roundoff: crate::suite::round_off::RoundoffRecords,
     /// The hard cases: eccentric orbits, the separatrix, escape or trapped.
     pub hard: HardCases,
     /// The verdict corpus: schemes and scenes outside the catalogue, each
     /// judged against the verdicts it must get.
     pub corpus: Vec<crate::corpus::Outcome>,
     /// The work-precision study, one record per scene.
-    pub work: Vec<crate::work::WorkRecord>,
+    pub work: Vec<crate::suite::work_precision::WorkRecord>,
     /// Its wall times, one per scene (machine-dependent).
-    pub work_timing: Vec<crate::work::WorkTiming>,
+    pub work_timing: Vec<crate::suite::work_precision::WorkTiming>,
     /// Every scheme's cost of a step against the hand-written floor
     /// (machine-dependent).
-    pub speed: crate::measure::cost::SpeedRecord,
+    pub speed: crate::measure::cost::step_time::SpeedRecord,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -146,7 +151,7 @@ pub fn run_suite(
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
     let hard = run_hard_jobs(hard_jobs(), threads)?;
     let corpus = crate::corpus::judge_all(&crate::corpus::entries(), threads)?;
-    let roundoff = crate::roundoff_suite::run_roundoff_suite(threads)?;
+    let roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
     let (work, work_timing, speed) = speed_against_error(&cases, threads);
     Ok(SuiteRecords {
         cases,
@@ -171,9 +176,9 @@ fn speed_against_error(
     cases: &[CaseRecords],
     threads: usize,
 ) -> (
-    Vec<crate::work::WorkRecord>,
-    Vec<crate::work::WorkTiming>,
-    crate::measure::cost::SpeedRecord,
+    Vec<crate::suite::work_precision::WorkRecord>,
+    Vec<crate::suite::work_precision::WorkTiming>,
+    crate::measure::cost::step_time::SpeedRecord,
 ) {
     let scenes = AnyScene::all();
     let orders: Vec<Vec<&OrderRecord>> = scenes
@@ -187,10 +192,10 @@ fn speed_against_error(
                 .collect()
         })
         .collect();
-    let (work, timing) = crate::work::work_study(&scenes, &orders, threads);
-    let speed = crate::measure::cost::speed(
-        crate::measure::cost::SPEED_STEPS,
-        crate::measure::cost::SPEED_REPEATS,
+    let (work, timing) = crate::suite::work_precision::work_study(&scenes, &orders, threads);
+    let speed = crate::measure::cost::step_time::speed(
+        crate::measure::cost::step_time::SPEED_STEPS,
+        crate::measure::cost::step_time::SPEED_REPEATS,
     );
     (work, timing, speed)
 }

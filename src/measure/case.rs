@@ -4,10 +4,10 @@
 //! dynamic dispatch is the one call that starts a study.
 
 use crate::error::Error;
-use crate::measure::energy::{EnergyRecord, EnergySpec, energy_drift};
-use crate::measure::order::{OrderRecord, OrderSpec, global_order};
-use crate::measure::reverse::{ReverseRecord, ReverseSpec, reversibility};
-use crate::measure::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+use crate::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use crate::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
+use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
+use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
 use crate::scene::{AnyScene, Hidden, Scene, SceneMeta, SceneVisitor};
 use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor};
 
@@ -70,7 +70,7 @@ where
 /// Binds the catalogue scheme (or compensated variant) `scheme_id` to `scene`.
 ///
 /// ```
-/// use stepladder::case::case;
+/// use stepladder::measure::case::case;
 /// use stepladder::scene::AnyScene;
 /// let c = case("leapfrog", &AnyScene::parse("kepler-circular").unwrap()).unwrap();
 /// assert_eq!(c.scheme().order, 2);

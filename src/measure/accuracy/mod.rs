@@ -1,0 +1,9 @@
+//! The accuracy studies: how fast the error falls with the step, and against what.
+
+pub mod fit;
+pub mod order;
+pub mod order_verdict;
+pub mod phase;
+pub mod scene_check;
+pub mod trajectory;
+pub mod window;
