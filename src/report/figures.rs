@@ -1,13 +1,17 @@
-//! Figures from the suite's records: SVG files for `stepladder report
-//! --figures DIR`, and Mermaid charts that Markdown viewers render inside
-//! REPORT.md. Nothing is computed here beyond choosing axes.
+//! Figures from the suite's records: SVG files written beside REPORT.md by
+//! the report command (into `figures/`, or `--figures DIR`) and embedded in
+//! it, and Mermaid charts that Markdown viewers render inline. Every figure
+//! here is deterministic (errors, force evaluations, energies; never wall
+//! time), so the committed copies can be checked for staleness like the
+//! report. Nothing is computed here beyond choosing axes.
 
 use crate::error::Error;
-use crate::measure::energy::EnergyRecord;
-use crate::measure::order::OrderRecord;
+use crate::measure::accuracy::order::OrderRecord;
+use crate::measure::accuracy::trajectory::TrajectoryRecord;
+use crate::measure::geometry::energy::EnergyRecord;
 use crate::measure::stability::StabilityRecord;
-use crate::measure::trajectory::TrajectoryRecord;
 use crate::suite::SuiteRecords;
+use crate::suite::work_precision::WorkRecord;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -46,6 +50,7 @@ fn log_log(
     x_desc: &str,
     y_desc: &str,
     series: &[(String, Vec<(f64, f64)>)],
+    legend: SeriesLabelPosition,
 ) -> Result<String, std::io::Error> {
     let points = series
         .iter()
@@ -99,7 +104,7 @@ fn log_log(
             .configure_series_labels()
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
-            .position(SeriesLabelPosition::LowerLeft)
+            .position(legend)
             .draw()
             .map_err(drawing)?;
         root.present().map_err(drawing)?;
@@ -114,7 +119,10 @@ pub fn convergence(scene: &str, records: &[&OrderRecord]) -> Result<String, std:
         .filter(|r| r.scene == scene)
         .map(|r| {
             (
-                r.scheme.to_string(),
+                match r.measured_order {
+                    Some(p) => format!("{} (fitted p = {p:.2})", r.scheme),
+                    None => format!("{} (no fit)", r.scheme),
+                },
                 r.rungs
                     .iter()
                     .filter_map(|g| Some((g.h, g.error?)))
@@ -127,6 +135,44 @@ pub fn convergence(scene: &str, records: &[&OrderRecord]) -> Result<String, std:
         "h",
         "max phase-space error",
         &series,
+        // errors fall to the right: small steps with large errors never occur
+        SeriesLabelPosition::UpperLeft,
+    )
+}
+
+/// Work against precision on one scene: the largest global error each
+/// scheme (and the peer, over its tolerances) reaches against the force
+/// evaluations it spends, both axes logarithmic.
+pub fn work_precision(work: &WorkRecord) -> Result<String, std::io::Error> {
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = work
+        .schemes
+        .iter()
+        .map(|w| {
+            (
+                w.scheme.to_string(),
+                w.global
+                    .iter()
+                    .filter_map(|p| Some((p.evaluations as f64, p.error?)))
+                    .collect(),
+            )
+        })
+        .collect();
+    if let Some(peer) = &work.peer {
+        series.push((
+            format!("{} (adaptive)", peer.peer),
+            peer.global
+                .iter()
+                .filter_map(|p| Some((p.evaluations as f64, p.error?)))
+                .collect(),
+        ));
+    }
+    log_log(
+        &format!("work against precision: {}", work.scene),
+        "force evaluations",
+        "max phase-space error",
+        &series,
+        // much work for a large error never occurs
+        SeriesLabelPosition::UpperRight,
     )
 }
 
@@ -147,6 +193,7 @@ pub fn energy(scene: &str, records: &[&EnergyRecord]) -> Result<String, std::io:
         "t",
         "max |E - E0| / |E0| so far",
         &series,
+        SeriesLabelPosition::LowerLeft,
     )
 }
 
@@ -263,16 +310,14 @@ pub fn earth_sun_energy(runs: &[TrajectoryRecord]) -> Result<String, std::io::Er
         "t (years)",
         "relative energy error",
         &series,
+        SeriesLabelPosition::LowerRight,
     )
 }
 
-/// Writes every figure into `dir` (created if missing); the files written.
-pub fn write_figures(dir: &Path, records: &SuiteRecords) -> Result<Vec<PathBuf>, Error> {
-    let io = |path: &Path, source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+/// Every deterministic figure of the suite, as `(file name, SVG)`: error
+/// against step, energy error against time and work against precision per
+/// scene, the stability limits, the Earth-Sun experiments.
+pub fn deterministic_figures(records: &SuiteRecords) -> Result<Vec<(String, String)>, Error> {
     let order = records.order();
     let energies: Vec<&EnergyRecord> = records.cases.iter().map(|c| &c.energy).collect();
     let mut figures: Vec<(String, Result<String, std::io::Error>)> = Vec::new();
@@ -283,6 +328,9 @@ pub fn write_figures(dir: &Path, records: &SuiteRecords) -> Result<Vec<PathBuf>,
         ));
         figures.push((format!("energy-{scene}.svg"), energy(scene, &energies)));
     }
+    for w in &records.work {
+        figures.push((format!("work-{}.svg", w.scene), work_precision(w)));
+    }
     figures.push(("stability.svg".into(), stability(&records.stability)));
     figures.push((
         "earth-sun-orbit.svg".into(),
@@ -292,11 +340,39 @@ pub fn write_figures(dir: &Path, records: &SuiteRecords) -> Result<Vec<PathBuf>,
         "earth-sun-energy.svg".into(),
         earth_sun_energy(&records.earth_sun),
     ));
+    figures
+        .into_iter()
+        .map(|(name, svg)| {
+            svg.map(|svg| (name.clone(), svg))
+                .map_err(|source| Error::Io {
+                    path: PathBuf::from(name),
+                    source,
+                })
+        })
+        .collect()
+}
+
+/// The folder of figures beside a report written to `report`.
+pub fn beside(report: &Path) -> PathBuf {
+    report
+        .parent()
+        .map_or_else(|| PathBuf::from(FOLDER), |d| d.join(FOLDER))
+}
+
+/// The name of the figures' folder, relative to the report.
+pub const FOLDER: &str = "figures";
+
+/// Writes every figure into `dir` (created if missing), each atomically;
+/// the files written.
+pub fn write_figures(dir: &Path, records: &SuiteRecords) -> Result<Vec<PathBuf>, Error> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     let mut written = Vec::new();
-    for (name, svg) in figures {
+    for (name, svg) in deterministic_figures(records)? {
         let path = dir.join(name);
-        let svg = svg.map_err(|e| io(&path, e))?;
-        std::fs::write(&path, svg).map_err(|e| io(&path, e))?;
+        super::write_atomically(&path, &svg)?;
         written.push(path);
     }
     Ok(written)

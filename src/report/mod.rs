@@ -2,25 +2,26 @@
 //! comes from a record, and the same records feed the CLI and the snapshots.
 
 pub mod figures;
-mod hard;
+mod hard_tables;
 mod markdown;
-pub mod roundoff;
-mod work;
+pub mod round_off_tables;
+mod summary;
+mod work_tables;
 
-pub use hard::{
+pub use hard_tables::{
     eccentric_energy_grid, eccentric_order_table, escape_table, following_rungs, following_table,
     hard_cases_section, predicted_boundary, round_off_table,
 };
 pub use markdown::Table;
 use markdown::{opt, order, sci, yes_no};
-pub use work::{cheapest_table, speed_table, time_to_target_table, work_scene, work_table};
+pub use work_tables::{cheapest_table, speed_table, time_to_target_table, work_scene, work_table};
 
 use crate::error::Error;
 use crate::ladder::LadderChoice;
 use crate::measure::Verdict;
-use crate::measure::order::OrderRecord;
-use crate::measure::phase::PhaseRecord;
-use crate::measure::scene_check::SceneCheck;
+use crate::measure::accuracy::order::OrderRecord;
+use crate::measure::accuracy::phase::PhaseRecord;
+use crate::measure::accuracy::scene_check::SceneCheck;
 use crate::measure::stability::StabilityRecord;
 use crate::scene::AnyScene;
 use crate::scheme::catalogue;
@@ -39,7 +40,10 @@ pub fn render(records: &SuiteRecords) -> String {
     out.push_str(MACHINE_MARKER);
     out.push('\n');
     out.push_str(&timings(records));
-    out.push_str(&work::timing_section(&records.speed, &records.work_timing));
+    out.push_str(&work_tables::timing_section(
+        &records.speed,
+        &records.work_timing,
+    ));
     out
 }
 
@@ -52,8 +56,22 @@ pub fn deterministic(records: &SuiteRecords) -> String {
          Everything above the timings is deterministic, and a test fails when the \
          committed copy is stale.\n\n",
     );
-    let (passed, total) = records.verdicts();
-    let _ = writeln!(out, "**{passed} of {total} verdicts pass.**\n");
+    out.push_str(&summary::summary(records));
+    for section in [
+        method_and_cast,
+        order_section,
+        geometry_section,
+        stability_section,
+        rest_of_report,
+    ] {
+        out.push_str(&section(records));
+    }
+    out
+}
+
+/// How the studies work, the schemes and the scenes (with their checks).
+fn method_and_cast(records: &SuiteRecords) -> String {
+    let mut out = String::new();
     out.push_str(&method());
     out.push_str("## Schemes\n\n");
     out.push_str(&scheme_table());
@@ -66,6 +84,12 @@ pub fn deterministic(records: &SuiteRecords) -> String {
          an eighth-order difference of the exact solution).\n\n",
     );
     out.push_str(&scene_check_table(&records.scenes));
+    out
+}
+
+/// The order-of-accuracy table and how to read it.
+fn order_section(records: &SuiteRecords) -> String {
+    let mut out = String::new();
     out.push_str("\n## Order of accuracy\n\n");
     let order = records.order();
     let _ = writeln!(
@@ -87,13 +111,18 @@ pub fn deterministic(records: &SuiteRecords) -> String {
         tolerance::ORDER_TOLERANCE,
     );
     out.push_str(&order_table(&order));
-    out.push_str("\n### Exact solution withheld\n\n");
     out.push_str(
-        "Every case again with the scene's exact solution hidden from the harness, errors \
-         measured against the run with half the step: the verdict must be the same and the \
-         order inside the exact run's interval.\n\n",
+        "\nEvery case is measured again with the scene's exact solution hidden from the \
+         harness, errors against the run with half the step: the verdict must be the same \
+         and the order inside the exact run's interval (the summary counts them; the \
+         appendix lists them).\n",
     );
-    out.push_str(&twin_table(&records.cases));
+    out
+}
+
+/// Energy, symplecticity, reversibility, phase error and the verdict corpus.
+fn geometry_section(records: &SuiteRecords) -> String {
+    let mut out = String::new();
     out.push_str("\n## Geometry\n\n");
     out.push_str(&geometry_method());
     out.push_str(&geometry_table(&records.cases));
@@ -106,6 +135,12 @@ pub fn deterministic(records: &SuiteRecords) -> String {
     out.push_str(&phase_table(&records.phase));
     out.push_str("\n## Verdict corpus\n\n");
     out.push_str(&corpus_section(&records.corpus));
+    out
+}
+
+/// Linear stability limits, in a table and per force evaluation.
+fn stability_section(records: &SuiteRecords) -> String {
+    let mut out = String::new();
     out.push_str("\n## Linear stability\n\n");
     out.push_str(
         "The largest `z = h w0` up to which the one-step map on the oscillator stays \
@@ -129,12 +164,36 @@ pub fn deterministic(records: &SuiteRecords) -> String {
         &per_evaluation,
     ));
     out.push_str("A scheme stable for every step (no limit) has no bar.\n");
+    out
+}
+
+/// The Earth-Sun experiments, the hard cases, work-precision, round-off and the appendix.
+fn rest_of_report(records: &SuiteRecords) -> String {
+    let mut out = String::new();
     out.push_str("\n## The Earth-Sun experiments\n\n");
     out.push_str(&earth_sun(&records.earth_sun));
     out.push('\n');
     out.push_str(&hard_cases_section(&records.hard));
-    out.push_str(&work::deterministic_section(&records.work));
-    out.push_str("\n## Error against step size\n\n");
+    out.push_str(&work_tables::deterministic_section(&records.work));
+    out.push_str(&round_off_tables::sections(&records.roundoff));
+    out.push_str(&appendix(records));
+    out
+}
+
+/// The tables behind the summary and the figures.
+fn appendix(records: &SuiteRecords) -> String {
+    let mut out = String::from("\n## Appendix\n\n### Exact solution withheld\n\n");
+    out.push_str(
+        "Every case again with the scene's exact solution hidden from the harness, errors \
+         measured against the run with half the step: the verdict must be the same and the \
+         order inside the exact run's interval.\n\n",
+    );
+    out.push_str(&twin_table(&records.cases));
+    out.push_str("\n### Every corpus entry\n\n");
+    out.push_str(&corpus_entries(&records.corpus));
+    out.push_str(&work_tables::evaluations_appendix(&records.work));
+    let order = records.order();
+    out.push_str("\n### Error against step size\n\n");
     out.push_str(
         "Every rung of every ladder: `error` is the largest phase-space error over the \
          trajectory, `final` the error at `t_end`, `local` the local order against the \
@@ -142,12 +201,11 @@ pub fn deterministic(records: &SuiteRecords) -> String {
     );
     for scene in AnyScene::all() {
         let id = scene.meta().id;
-        let _ = writeln!(out, "\n### {id}\n");
+        let _ = writeln!(out, "\n#### {id}\n");
         for r in order.iter().filter(|r| r.scene == id) {
             out.push_str(&rung_table(r));
         }
     }
-    out.push_str(&roundoff::sections(&records.roundoff));
     out
 }
 
@@ -163,12 +221,12 @@ fn geometry_method() -> String {
          in coordinates `(q, v/w)`; symplectic when `max |J^T Omega J - Omega| <= {:e}`.\n\
          - **Reversibility.** {} steps of 1/100 period forward, then back with `-h`; the \
          return error in units of `eps * scale`, time-symmetric when within `16 N`.\n\n",
-        crate::measure::energy::DEFAULT_PERIODS,
-        (1.0 / crate::measure::energy::DEFAULT_STEP).round(),
+        crate::measure::geometry::energy::DEFAULT_PERIODS,
+        (1.0 / crate::measure::geometry::energy::DEFAULT_STEP).round(),
         tolerance::GROWTH_DECADES,
         tolerance::LOST_FRACTION,
         tolerance::SYMPLECTIC_TOLERANCE,
-        crate::measure::reverse::DEFAULT_STEPS,
+        crate::measure::geometry::reverse::DEFAULT_STEPS,
     )
 }
 
@@ -310,7 +368,7 @@ pub fn stability_table(records: &[StabilityRecord]) -> String {
 
 /// The course notes' Earth-Sun runs: a table of where they end, and the
 /// relative energy error against time as a chart.
-pub fn earth_sun(runs: &[crate::measure::trajectory::TrajectoryRecord]) -> String {
+pub fn earth_sun(runs: &[crate::measure::accuracy::trajectory::TrajectoryRecord]) -> String {
     let mut out = String::from(
         "The course notes' two runs of the circular Earth-Sun orbit for ten years: explicit \
          Euler with `dt = 0.001` and velocity Verlet with `dt = 0.01`. Euler's energy grows \
@@ -441,7 +499,7 @@ fn method() -> String {
          (a straight line through smooth errors would turn them into bias); `p` with \
          Student's t 95% interval, widened by how far `p` moves when the window loses one or \
          two end rungs and by how far the local orders extrapolate from it.\n\n",
-        crate::measure::order::COMPARISONS,
+        crate::measure::accuracy::order::COMPARISONS,
         crate::ladder::AUTO_MAX_RUNG_EVALUATIONS,
         tolerance::ERROR_CEILING,
         tolerance::WINDOW_RUNGS,
@@ -570,8 +628,7 @@ pub fn twin_table(cases: &[CaseRecords]) -> String {
 
 /// The corpus' confusion matrix and every entry's verdicts.
 pub fn corpus_section(outcomes: &[crate::corpus::Outcome]) -> String {
-    use crate::corpus::{Confusion, Expect, Truth};
-    let c = Confusion::of(outcomes);
+    let c = crate::corpus::Confusion::of(outcomes);
     let mut out = String::from(
         "Schemes and scenes outside the catalogue, written apart from it: correct ones \
          (odd orders, order five and six, implicit, symmetric but not symplectic, symplectic \
@@ -584,20 +641,16 @@ pub fn corpus_section(outcomes: &[crate::corpus::Outcome]) -> String {
          source, and in the JSON output); a correct entry is a false alarm when any claim \
          gets another verdict, a broken one is missed when any does.\n\n",
     );
-    let mut m = Table::new(&["", "judged right", "judged wrong"]);
-    m.row(vec![
-        "correct pairs".into(),
-        format!("{} pass", c.correct_pass),
-        format!("{} false alarms", c.false_alarm),
-    ]);
-    m.row(vec![
-        "broken pairs".into(),
-        format!("{} caught", c.broken_caught),
-        format!("{} missed", c.missed),
-    ]);
-    out.push_str(&m.render());
-    out.push_str(
-        "\nEvery entry, claim by claim: the verdict; `(pass)` in parentheses where the entry \
+    out.push_str(&summary::confusion_table(&c));
+    out.push_str("\nEvery entry, claim by claim, is in the appendix.\n");
+    out
+}
+
+/// Every corpus entry's verdicts, claim by claim.
+pub fn corpus_entries(outcomes: &[crate::corpus::Outcome]) -> String {
+    use crate::corpus::{Expect, Truth};
+    let mut out = String::from(
+        "Every entry, claim by claim: the verdict; `(pass)` in parentheses where the entry \
          does not judge that claim; **bold** where the verdict is not the expected one.\n\n",
     );
     let mut t = Table::new(&[

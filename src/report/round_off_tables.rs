@@ -2,9 +2,9 @@
 //! of exactly conserved quantities.
 
 use super::markdown::{Table, opt, sci};
-use crate::measure::longrun::LongrunRecord;
-use crate::measure::roundoff::{Floor, PairRecord, RoundoffRecord};
-use crate::roundoff_suite::RoundoffRecords;
+use crate::measure::roundoff::floor::{Floor, PairRecord, RoundoffRecord};
+use crate::measure::roundoff::longrun::LongrunRecord;
+use crate::suite::round_off::RoundoffRecords;
 use std::fmt::Write as _;
 
 /// Both sections, as they appear in REPORT.md.

@@ -3,14 +3,14 @@
 //! to a few significant digits so the section is the same on any machine.
 
 use super::markdown::{Table, opt, sci};
-use crate::hard::{ESCAPE_DELTAS, HardCases, NAIVE_STEP};
-use crate::measure::eccentric::{
-    ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, OrbitEnergy, OrderStatus,
+use crate::measure::hard::eccentric::{
+    ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, KickLag, OrbitEnergy, OrderStatus,
     RoundOffRecord, kick_lag, short_ratio,
 };
-use crate::measure::escape::{EscapeRecord, Misclassified};
-use crate::measure::following::{Event, FollowingRecord, LineFit};
+use crate::measure::hard::escape::{EscapeRecord, Misclassified};
+use crate::measure::hard::following::{Event, FollowingRecord, LineFit};
 use crate::scheme::scheme_ids;
+use crate::suite::hard_cases::{ESCAPE_DELTAS, HardCases, NAIVE_STEP};
 use crate::tolerance;
 use std::fmt::Write as _;
 
@@ -107,23 +107,7 @@ fn eccentric_section(hard: &HardCases) -> String {
     out.push_str(&eccentric_order_table(&hard.orders));
     for r in &hard.orders {
         if let Some(k) = kick_lag(r) {
-            let _ = writeln!(
-                out,
-                "\nEuler-Cromer at `e = {}` shows second order where it claims first: its \
-                 whole-step velocities are leap-frog's half-step ones and lag by `h a/2`, at \
-                 pericentre a first-order error `L h` with `L = a_p/(2w) = {:.1}` in phase units, \
-                 while the second-order error of the passage is `C h^2` with `C = {}` (the \
-                 window's finest rung). The first-order term can dominate only below `h = L/C = \
-                 {}` (tau_p/{}), a rung of {} steps, beyond the cap. An order above the \
-                 claim refutes nothing, so the verdict passes; the table's order is this, not a \
-                 more accurate scheme.",
-                r.pericentre.e,
-                k.lag_coefficient,
-                sci(k.second_order_coefficient),
-                sci(k.crossover),
-                short_ratio(r.pericentre.time_scale / k.crossover),
-                sci(k.crossover_steps),
-            );
+            out.push_str(&kick_lag_note(r, &k));
         }
     }
     out.push_str("\n#### Energy at `h = tau_p/8`\n\n");
@@ -142,6 +126,30 @@ fn eccentric_section(hard: &HardCases) -> String {
     );
     out.push_str(&round_off_table(&hard.round_off));
     out.push('\n');
+    out
+}
+
+/// Why Euler-Cromer measures second order on an eccentric orbit where it
+/// claims first.
+fn kick_lag_note(r: &EccentricOrderRecord, k: &KickLag) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "\nEuler-Cromer at `e = {}` shows second order where it claims first: its \
+         whole-step velocities are leap-frog's half-step ones and lag by `h a/2`, at \
+         pericentre a first-order error `L h` with `L = a_p/(2w) = {:.1}` in phase units, \
+         while the second-order error of the passage is `C h^2` with `C = {}` (the \
+         window's finest rung). The first-order term can dominate only below `h = L/C = \
+         {}` (tau_p/{}), a rung of {} steps, beyond the cap. An order above the \
+         claim refutes nothing, so the verdict passes; the table's order is this, not a \
+         more accurate scheme.",
+        r.pericentre.e,
+        k.lag_coefficient,
+        sci(k.second_order_coefficient),
+        sci(k.crossover),
+        short_ratio(r.pericentre.time_scale / k.crossover),
+        sci(k.crossover_steps),
+    );
     out
 }
 
@@ -410,7 +418,7 @@ pub fn following_rungs(r: &FollowingRecord) -> String {
             match (g.used, g.dropped) {
                 (true, _) => "fitted".to_string(),
                 (false, Some(d)) => match d {
-                    crate::measure::order::DropReason::AboveCeiling => {
+                    crate::measure::accuracy::order::DropReason::AboveCeiling => {
                         "offset above the ceiling".to_string()
                     }
                     d => d.explain().to_string(),

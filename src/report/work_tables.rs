@@ -3,12 +3,12 @@
 //! (machine-dependent).
 
 use super::markdown::{Table, sci};
-use crate::measure::cost::SpeedRecord;
-use crate::measure::peer::{PEER_NAME, PEER_TOLERANCES};
-use crate::measure::work::{
+use crate::measure::cost::peer::{PEER_NAME, PEER_TOLERANCES};
+use crate::measure::cost::step_time::SpeedRecord;
+use crate::measure::cost::work_points::{
     ENERGY_FLOOR_GUARD, ENERGY_MAX_STEPS, ENERGY_PERIODS, ENERGY_START, Reach, TARGETS, TargetCost,
 };
-use crate::work::{Cheapest, Fastest, WorkRecord, WorkTiming};
+use crate::suite::work_precision::{Cheapest, Fastest, WorkRecord, WorkTiming};
 use std::fmt::Write as _;
 
 /// A cost in force evaluations, to three digits; `<=` marks an upper bound.
@@ -175,7 +175,17 @@ pub fn deterministic_section(records: &[WorkRecord]) -> String {
     out.push_str(&method());
     out.push_str("### Cheapest scheme per target\n\n");
     out.push_str(&cheapest_table(records));
-    out.push_str("\n### Force evaluations to reach each target\n");
+    out.push_str(
+        "\nThe work-precision figures are in the summary; the force evaluations each \
+         scheme needs for each target are in the appendix.\n",
+    );
+    out
+}
+
+/// Force evaluations to reach each target, per scene, with the peer's
+/// tolerances: the numbers behind the work-precision figures.
+pub fn evaluations_appendix(records: &[WorkRecord]) -> String {
+    let mut out = String::from("\n### Force evaluations to reach each target\n");
     for r in records {
         let _ = writeln!(out, "\n#### {}\n", r.scene);
         out.push_str(&work_table(r));
