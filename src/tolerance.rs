@@ -215,15 +215,17 @@ pub const BOUNDED_BELOW: f64 = 0.25;
 pub const RANDOM_WALK_BELOW: f64 = 0.75;
 
 /// The largest relative energy error round-off alone can produce in `steps`
-/// steps: each step rounds the energy by a few `eps`, which adds up as a
+/// steps of a scheme computing with unit round-off `epsilon`
+/// ([`crate::scheme::Scheme::epsilon`]): each step rounds the energy by a
+/// few `eps`, which adds up as a
 /// random walk (`eps sqrt(N)`) when roundings are unbiased and linearly
 /// (`eps N`) at worst; 10 `eps N` bounds both. A growing error below it is
 /// classed as round-off (random walk), not as a drift of the scheme: the
 /// implicit midpoint rule, which conserves the oscillator's energy exactly,
 /// reaches 4e-13 after 10^6 steps, against 2e-9 for this bound and 9e-4 for
 /// RK4's genuine drift at the same step.
-pub fn round_off_energy(steps: u64) -> f64 {
-    10.0 * f64::EPSILON * steps as f64
+pub fn round_off_energy(steps: u64, epsilon: f64) -> f64 {
+    10.0 * epsilon * steps as f64
 }
 
 /// Relative phase errors below this are too close to round-off (the angle is

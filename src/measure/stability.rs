@@ -3,7 +3,7 @@
 //!
 //! The one-step map on the oscillator is a 2x2 matrix `M(z)` (measured from
 //! the scheme itself by stepping the basis states, see
-//! [`super::phase::one_step_matrix`]); its powers stay bounded when its
+//! [`super::accuracy::phase::one_step_matrix`]); its powers stay bounded when its
 //! spectral radius is at most one. The boundaries of the stable set are
 //! found on a scan and bisected.
 
@@ -60,7 +60,7 @@ pub fn spectral_radius(m: &Matrix2<f64>) -> f64 {
 /// the map's entries (see [`STABILITY_SLACK_EPS_PER_EVALUATION`]).
 pub fn is_stable<M: Scheme>(scheme: &M, z: f64) -> bool {
     let slack = STABILITY_SLACK_EPS_PER_EVALUATION
-        * f64::EPSILON
+        * scheme.epsilon()
         * scheme.meta().force_evaluations.max(1) as f64;
     one_step_matrix(scheme, z).is_some_and(|m| {
         let (trace, det) = (m.trace(), m.determinant());

@@ -6,15 +6,18 @@
 //! the acceleration it will reuse); [`Scheme::state`] hands studies a
 //! synchronised `(q, v)` at whole steps so they compare like with like.
 
+pub mod black_box;
 mod catalogue;
 pub mod compensated;
 mod composition;
 mod euler;
 mod implicit;
 mod runge_kutta;
+mod single_precision;
 mod splitting;
 mod verlet;
 
+pub use black_box::{BlackBox, Float, Force, StepFn};
 pub use catalogue::{SchemeVisitor, TABLES, catalogue, scheme_ids, visit_scheme};
 pub use compensated::{
     CompensatedSplitting, LeapfrogCompensated, StormerVerletCompensated,
@@ -24,6 +27,7 @@ pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
 pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
 pub use runge_kutta::Rk4;
+pub use single_precision::{SingleCarry, SinglePrecision};
 pub use splitting::{EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 pub use verlet::{Leapfrog, StormerVerlet};
 
@@ -150,6 +154,22 @@ pub trait Scheme {
         _carry: &Self::Carry<R, D>,
     ) -> Option<u64> {
         None
+    }
+
+    /// The step runs in any [`Real`], dual numbers included, so studies can
+    /// take its exact tangent map; `false` for a scheme that only runs on
+    /// plain floats (a [`BlackBox`]), whose tangent map is then taken by
+    /// finite differences with a bounded error.
+    fn differentiable(&self) -> bool {
+        true
+    }
+
+    /// The unit round-off of the arithmetic the step is computed in:
+    /// `f64::EPSILON` unless the scheme rounds to a narrower type (an `f32`
+    /// [`BlackBox`], [`SinglePrecision`]). Round-off floors and tolerances
+    /// scale with it.
+    fn epsilon(&self) -> f64 {
+        f64::EPSILON
     }
 }
 

@@ -256,7 +256,11 @@ fn energy_at<M: Scheme, S: Scene<D>, const D: usize>(
     let class = trace.class(lost_at, growth.exponent);
     let claims = Claims::of(meta.symplectic, meta.symmetric);
     let measured = trace.describe(lost_at, class, growth.exponent);
-    let (verdict, reason) = claims.judge(&trace, lost_at, class, &measured);
+    // a drift-like slope that only the round-off allowance classed as a
+    // random walk: a drift this small cannot be told from round-off
+    let drift_within_round_off = class == Some(EnergyClass::RandomWalk)
+        && growth.exponent.map(classify_growth) == Some(EnergyClass::Drifting);
+    let (verdict, reason) = claims.judge(&trace, lost_at, class, drift_within_round_off, &measured);
     let (verdict, reason) = at_resolving_step(claims.conserves, verdict, reason, h, halvings);
     Ok(EnergyRecord {
         scheme: meta.id,
@@ -294,6 +298,8 @@ struct EnergyTrace {
     running: f64,
     last: f64,
     taken: u64,
+    /// the unit round-off of the scheme's arithmetic
+    epsilon: f64,
     t_first: f64,
     /// the running maximum when the first period ended
     after_one_period: Option<f64>,
@@ -329,6 +335,7 @@ fn trace_energy<M: Scheme, S: Scene<D>, const D: usize>(
         running: 0.0,
         last: 0.0,
         taken: 0,
+        epsilon: scheme.epsilon(),
         t_first,
         after_one_period: None,
         past_lost_fraction: None,
@@ -430,7 +437,9 @@ impl EnergyTrace {
         // whatever its exponent: a random walk of eps a step, or at worst a
         // linear sum when rounding is biased
         growth_exponent.map(classify_growth).map(|c| {
-            if c != EnergyClass::Bounded && self.running <= round_off_energy(self.taken) {
+            if c != EnergyClass::Bounded
+                && self.running <= round_off_energy(self.taken, self.epsilon)
+            {
                 EnergyClass::RandomWalk
             } else {
                 c
@@ -504,11 +513,12 @@ impl Claims {
         trace: &EnergyTrace,
         lost_at: Option<f64>,
         class: Option<EnergyClass>,
+        drift_within_round_off: bool,
         measured: &str,
     ) -> (Verdict, String) {
         let (conserves, claims) = (self.conserves, self.name);
         let completed = trace.outcome.completed();
-        let round_off = round_off_energy(trace.taken);
+        let round_off = round_off_energy(trace.taken, trace.epsilon);
         match class {
             // a blow-up at this step, before the orbit was lost to a growing
             // error, says nothing about conservation below the scheme's
@@ -538,6 +548,16 @@ impl Claims {
                 format!(
                     "{measured}, above what round-off can produce ({round_off:.2e}): {claims} \
                      must not wander"
+                ),
+            ),
+            // in f32 the allowance 10 eps N reaches 1 at 10^6 steps, so a
+            // slow drift can hide in it: say so rather than "no drift"
+            Some(_) if conserves && drift_within_round_off => (
+                Verdict::Pass,
+                format!(
+                    "{measured}: the growth looks like a drift but stays within what round-off \
+                     of this arithmetic can produce ({round_off:.2e}), so it refutes nothing; \
+                     the symplecticity study decides"
                 ),
             ),
             Some(_) if conserves => (

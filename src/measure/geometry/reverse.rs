@@ -103,7 +103,7 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
     let return_error = outcome
         .completed()
         .then(|| scene.phase_distance(&back, &start));
-    let return_ulps = return_error.map(|e| e / (f64::EPSILON * scale));
+    let return_ulps = return_error.map(|e| e / (scheme.epsilon() * scale));
     let growth = perturbation_growth(scheme, scene, &there, h, steps);
     let tolerance_ulps = reverse_tolerance_ulps(steps, growth);
     let measured = return_ulps.is_some_and(|u| u <= tolerance_ulps);

@@ -550,7 +550,14 @@ pub fn eccentric_energy<M: Scheme>(
     let offset = apocentre.first().copied();
     let change = (apocentre.len() >= 2)
         .then(|| (apocentre[apocentre.len() - 1] - apocentre[0]) / (apocentre.len() - 1) as f64);
-    let (class, reason) = classify(lost_at, unbound.is_some(), &apocentre, taken, periods);
+    let (class, reason) = classify(
+        scheme.epsilon(),
+        lost_at,
+        unbound.is_some(),
+        &apocentre,
+        taken,
+        periods,
+    );
     Ok(EccentricEnergyRecord {
         scheme: scheme.meta().id,
         pericentre: peri,
@@ -574,6 +581,7 @@ pub fn eccentric_energy<M: Scheme>(
 /// apocentre energy moves by more than ECCENTRIC_DRIFT_FRACTION of its offset
 /// plus round-off over the run, bounded otherwise.
 fn classify(
+    epsilon: f64,
     lost_at: Option<f64>,
     unbound: bool,
     apocentre: &[f64],
@@ -597,7 +605,8 @@ fn classify(
         ),
         (None, Some(offset), Some(change)) => {
             let total = (change * (apocentre.len() - 1) as f64).abs();
-            let allowed = ECCENTRIC_DRIFT_FRACTION * offset.abs() + round_off_energy(taken);
+            let allowed =
+                ECCENTRIC_DRIFT_FRACTION * offset.abs() + round_off_energy(taken, epsilon);
             if total > allowed {
                 (
                     OrbitEnergy::Drifting,
