@@ -18,6 +18,7 @@ use crate::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
 use crate::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+use crate::pin::{PinOutcome, check_pin};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 
@@ -68,6 +69,17 @@ pub fn assert_energy<M: Scheme, S: Scene<D>, const D: usize>(
         panic!("{message}");
     }
     record
+}
+
+/// Checks the error constant against the pin in `dir` (see [`crate::pin`]),
+/// writing the pin if it is missing; panics if it moved beyond the pin's
+/// tolerance, or if the order study does not pass.
+pub fn assert_pinned<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    dir: impl AsRef<std::path::Path>,
+) -> PinOutcome {
+    check_pin(scheme, scene, dir.as_ref()).unwrap_or_else(|message| panic!("{message}"))
 }
 
 /// Every guard above; panics once, listing every claim that failed.
@@ -170,4 +182,77 @@ pub fn energy_failure(r: &EnergyRecord) -> Option<String> {
             r.reason
         )
     })
+}
+
+/// One `#[test]` per claim, per scheme and scene: `order`, `symplectic`,
+/// `reversible`, `energy` and `pinned` (the error constant, pinned in
+/// `snapshots/stepladder/` under the calling crate's root), in modules named
+/// after the scheme and the scene, so that `cargo test` lists
+/// `my_verlet::kepler_circular::order` and a failure names its claim.
+///
+/// Each line is `module_name: scheme_expression => { scene_module:
+/// scene_expression, ... }`; the expressions are evaluated in the calling
+/// module's scope.
+///
+/// ```
+/// # mod doc {
+/// use stepladder::scene::{Harmonic, KeplerCircular};
+/// use stepladder::scheme::{Rk4, VELOCITY_VERLET};
+///
+/// stepladder::guard_claims! {
+///     velocity_verlet: VELOCITY_VERLET => {
+///         kepler_circular: KeplerCircular,
+///         harmonic: Harmonic::default(),
+///     }
+///     rk4: Rk4 => { harmonic: Harmonic::default() }
+/// }
+/// # }
+/// ```
+#[macro_export]
+macro_rules! guard_claims {
+    ($($scheme_module:ident : $scheme:expr => { $($scene_module:ident : $scene:expr),* $(,)? })*) => {
+        $(
+            mod $scheme_module {
+                #[allow(unused_imports)]
+                use super::*;
+                $(
+                    mod $scene_module {
+                        #[allow(unused_imports)]
+                        use super::*;
+
+                        #[test]
+                        fn order() {
+                            $crate::guard::assert_order(&$scheme, &$scene);
+                        }
+
+                        #[test]
+                        fn symplectic() {
+                            $crate::guard::assert_symplectic(&$scheme, &$scene);
+                        }
+
+                        #[test]
+                        fn reversible() {
+                            $crate::guard::assert_reversible(&$scheme, &$scene);
+                        }
+
+                        #[test]
+                        fn energy() {
+                            $crate::guard::assert_energy(&$scheme, &$scene);
+                        }
+
+                        #[test]
+                        fn pinned() {
+                            $crate::guard::assert_pinned(
+                                &$scheme,
+                                &$scene,
+                                ::std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                                    .join("snapshots")
+                                    .join("stepladder"),
+                            );
+                        }
+                    }
+                )*
+            }
+        )*
+    };
 }

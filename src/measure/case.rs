@@ -8,6 +8,7 @@ use crate::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
 use crate::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+use crate::pin::{PinOutcome, check_pin};
 use crate::scene::{AnyScene, Hidden, Scene, SceneMeta, SceneVisitor};
 use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor};
 
@@ -28,6 +29,8 @@ pub trait Case: Send + Sync {
     fn symplectic(&self, spec: &SymplecticSpec) -> Result<SymplecticRecord, Error>;
     /// The forward-and-back study.
     fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error>;
+    /// The error-constant pin in `dir` ([`crate::pin::check_pin`]).
+    fn pin(&self, dir: &std::path::Path) -> Result<PinOutcome, String>;
 }
 
 /// A scheme and a `D`-dimensional scene of concrete types.
@@ -64,6 +67,9 @@ where
     }
     fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error> {
         reversibility(self.scheme, &self.scene, spec)
+    }
+    fn pin(&self, dir: &std::path::Path) -> Result<PinOutcome, String> {
+        check_pin(self.scheme, &self.scene, dir)
     }
 }
 

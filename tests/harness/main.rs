@@ -13,6 +13,7 @@ mod hard;
 mod implicit;
 mod order;
 mod order_conditions;
+mod pins;
 mod properties;
 mod report;
 mod roundoff;
