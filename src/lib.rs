@@ -17,16 +17,25 @@
 //! - [`measure`]: the studies; [`measure::accuracy::order::global_order`] measures the
 //!   global order with a 95% interval over an automatically chosen window;
 //!   [`measure::roundoff::floor`] and [`measure::roundoff::longrun`] the round-off floors and
-//!   the growth of round-off over long runs.
-//! - [`hard`]: the hard cases: orders and energy on eccentric Kepler orbits,
-//!   how long a scheme follows the anharmonic well's separatrix, and whether
-//!   it tells an orbit just below the barrier from one just above.
+//!   the growth of round-off over long runs;
+//!   [`measure::hard`] the hard cases: orders and energy on eccentric Kepler
+//!   orbits, how long a scheme follows the anharmonic well's separatrix, and
+//!   whether it tells an orbit just below the barrier from one just above;
+//!   [`measure::cost`] speed against error, the force evaluations and the time
+//!   each scheme needs to reach target errors, and the time of a step against
+//!   a hand-written floor.
 //! - [`guard`]: one-line assertions of a scheme's claims for a downstream
-//!   crate's tests, with the deciding figures in the failure message.
-//! - [`work`]: speed against error, the force evaluations and the time each
-//!   scheme needs to reach target errors, beside the `ode_solvers` peer;
-//!   [`measure::cost::step_time`] times a step against a hand-written floor.
-//! - [`report`], [`cli`]: REPORT.md and the `stepladder` command.
+//!   crate's tests, with the deciding figures in the failure message, and
+//!   [`guard_claims!`], one `#[test]` per claim; [`pin`] pins the error
+//!   constant in the crate's own snapshot folder.
+//! - [`scheme::BlackBox`] guards an integrator that only runs on `f64` or
+//!   `f32` (a step function on slices, from any crate);
+//!   [`scene::FromPotential`] makes a scene from a potential alone.
+//! - `report`, `suite` and `cli` (features `report` and `cli`, on by
+//!   default): the whole catalogue's studies, REPORT.md and its figures, and
+//!   the `stepladder` command. With `default-features = false` the crate is
+//!   the measurement core alone, on nalgebra, num-dual, statrs, serde and
+//!   thiserror.
 //!
 //! ```
 //! use stepladder::measure::accuracy::order::{global_order, OrderSpec};
@@ -41,18 +50,25 @@
 //! ```
 #![warn(missing_docs)]
 
+#[cfg(feature = "cli")]
 pub mod cli;
+/// The nalgebra version stepladder is built on, for writing generic schemes
+/// and scenes against the same vector types.
+pub use nalgebra;
 pub mod corpus;
 pub mod error;
 pub mod guard;
 pub mod ladder;
 pub mod measure;
 pub mod parallel;
+pub mod pin;
+#[cfg(feature = "report")]
 pub mod report;
 pub mod run;
 pub mod scene;
 pub mod scheme;
 pub mod state;
+#[cfg(feature = "report")]
 pub mod suite;
 pub mod tolerance;
 

@@ -14,7 +14,7 @@ use nalgebra::{SMatrix, SVector};
 
 /// Most iterations one step may take. The fixed-point iteration contracts by
 /// `rho = h^2 L / 4` (`L` the Lipschitz constant of `a`); once it contracts
-/// by less than [`SWITCH_RATIO`] per iteration the solve turns to Newton's
+/// by less than `SWITCH_RATIO` (one half) per iteration the solve turns to Newton's
 /// method, which converges quadratically whatever `rho`. A step that still
 /// needs more is far too large for the orbit and is reported as not converged.
 pub const MAX_ITERATIONS: u32 = 64;

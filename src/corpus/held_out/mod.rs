@@ -27,7 +27,7 @@
 //!
 //! Notation: `z = h w` with `w` the scene's angular frequency `2 pi / T`;
 //! "relative" errors are phase-space distances divided by the scene's
-//! [`Scene::scale`].
+//! [`crate::scene::Scene::scale`].
 
 mod scenes;
 mod schemes;

@@ -122,7 +122,7 @@ pub struct Analysis {
     pub choice: WindowChoice,
     /// The fit over the window.
     pub fit: Option<OrderFit>,
-    /// See [`OrderRecord::trend_systematic`].
+    /// See [`super::order::OrderRecord::trend_systematic`].
     pub trend_systematic: Option<f64>,
     /// The fit's interval widened by the trend and by
     /// [`tolerance::ORDER_RESOLUTION`].
