@@ -262,6 +262,36 @@ mod tests {
     }
 
     #[test]
+    fn the_other_studies_see_the_same_method_through_the_black_box() {
+        use crate::measure::accuracy::phase::phase_error;
+        use crate::measure::hard::eccentric::{OrderStatus, eccentric_order};
+        use crate::measure::stability::stability;
+        let mut meta = *VELOCITY_VERLET.meta();
+        meta.force_evaluations = 2;
+        meta.phase_error = crate::scheme::VERLET_PHASE;
+        let bb = BlackBox::new(meta, kick_drift_kick::<f64>);
+        // the linear stability limit of the Verlet family is z = 2
+        let (a, b) = (stability(&bb), stability(&VELOCITY_VERLET));
+        assert_eq!(a.stability_limit, b.stability_limit);
+        assert!(
+            (a.stability_limit.unwrap() - 2.0).abs() < 1e-3,
+            "{:?}",
+            a.stability_limit
+        );
+        // the phase error, against its analytic z^2 / 24
+        let phase = phase_error(&bb);
+        assert_eq!(
+            phase.verdict,
+            Some(crate::measure::Verdict::Pass),
+            "{}",
+            phase.reason
+        );
+        // a hard case: the order on the eccentric orbit
+        let ecc = eccentric_order(&bb, 0.6, 1 << 20).unwrap();
+        assert_eq!(ecc.status, OrderStatus::Pass, "{}", ecc.reason);
+    }
+
+    #[test]
     fn an_f32_black_box_rounds_to_single_precision() {
         let bb = BlackBox::new(*VELOCITY_VERLET.meta(), kick_drift_kick::<f32>);
         let osc = Harmonic::default();
