@@ -1,9 +1,10 @@
 //! Guards for three integrators this crate does not control in the same
 //! way: its own generic velocity Verlet, an f32 leap-frog as a game engine
-//! would write it, and `ode_solvers`' fixed-step RK4 (f64 and f32), each
-//! claim a separate test named after it.
+//! would write it, and `ode_solvers`' fixed-step RK4 (f64 and f32) and its
+//! DOP853 and DOPRI5 pairs taken one step at a time, each claim a separate
+//! test named after it.
 
-use ode_solvers::{Rk4, System, Vector2, Vector4};
+use ode_solvers::{Dop853, Dopri5, OutputType, Rk4, System, Vector2, Vector4};
 use std::cell::RefCell;
 use stepladder::nalgebra::{SVector, Vector1};
 use stepladder::scene::{
@@ -139,6 +140,50 @@ macro_rules! ode_solvers_rk4 {
         }
     };
 }
+/// One step of an `ode_solvers` embedded pair (`Dop853`, `Dopri5`) of size
+/// `h`: the first step set to `h`, the largest to `h`, and tolerances so
+/// loose that the step is accepted, so the call is one step of the pair's
+/// high-order formula. (At working tolerances the solver would subdivide
+/// `h`, and the ladder would measure its step control instead.)
+macro_rules! ode_solvers_pair {
+    ($name:ident, $solver:ident, $n:literal, $vector:ident) => {
+        fn $name(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>) {
+            let y0 = $vector::<f64>::from_fn(|i, _| if i < $n { q[i] } else { v[i - $n] });
+            let system = Newton {
+                force: RefCell::new(force),
+            };
+            let mut solver = $solver::from_param(
+                system,
+                0.0,
+                h,
+                h,
+                y0,
+                1e30,
+                1e30,
+                0.9,
+                0.0,
+                0.333,
+                6.0,
+                h,
+                h,
+                10,
+                1000,
+                OutputType::Sparse,
+            );
+            let stats = solver.integrate().expect("one step");
+            assert_eq!(stats.accepted_steps, 1, "{stats:?}");
+            let y = solver.y_out().last().expect("the step's output");
+            for i in 0..$n {
+                q[i] = y[i];
+                v[i] = y[$n + i];
+            }
+        }
+    };
+}
+ode_solvers_pair!(dop853_2d, Dop853, 2, Vector4);
+ode_solvers_pair!(dop853_1d, Dop853, 1, Vector2);
+ode_solvers_pair!(dopri5_2d, Dopri5, 2, Vector4);
+
 ode_solvers_rk4!(rk4_f64_1d, f64, Vector2, 1);
 ode_solvers_rk4!(rk4_f64_2d, f64, Vector4, 2);
 ode_solvers_rk4!(rk4_f32_2d, f32, Vector4, 2);
@@ -153,6 +198,15 @@ fn ode_solvers_rk4_2d() -> BlackBox<f64, StepFn<f64>> {
 }
 fn ode_solvers_rk4_f32() -> BlackBox<f32, StepFn<f32>> {
     BlackBox::new(claims("ode-solvers-rk4-f32", 4, false, 4), rk4_f32_2d)
+}
+fn ode_solvers_dop853() -> BlackBox<f64, StepFn<f64>> {
+    BlackBox::new(claims("ode-solvers-dop853", 8, false, 12), dop853_2d)
+}
+fn ode_solvers_dop853_1d() -> BlackBox<f64, StepFn<f64>> {
+    BlackBox::new(claims("ode-solvers-dop853", 8, false, 12), dop853_1d)
+}
+fn ode_solvers_dopri5() -> BlackBox<f64, StepFn<f64>> {
+    BlackBox::new(claims("ode-solvers-dopri5", 5, false, 7), dopri5_2d)
 }
 fn engine() -> BlackBox<f32, StepFn<f32>> {
     BlackBox::new(claims("engine-leapfrog-f32", 2, true, 2), engine_adapter)
@@ -197,6 +251,15 @@ stepladder::guard_claims! {
     ode_solvers_rk4_oscillator: ode_solvers_rk4_1d() => {
         harmonic: Harmonic::default(),
         pendulum: FromPotential(Pendulum),
+    }
+    ode_solvers_dop853: ode_solvers_dop853() => {
+        kepler_circular: KeplerCircular,
+    }
+    ode_solvers_dop853_oscillator: ode_solvers_dop853_1d() => {
+        harmonic: Harmonic::default(),
+    }
+    ode_solvers_dopri5: ode_solvers_dopri5() => {
+        kepler_circular: KeplerCircular,
     }
     engine_leapfrog_f32: engine() => {
         kepler_circular: KeplerCircular,
@@ -281,6 +344,21 @@ mod caught {
             &KeplerCircular,
         );
     }
+}
+
+/// DOP853 on the eccentric orbit: its local orders approach eight from
+/// above (8.67 down to 8.02 over the last clean rungs before the f64
+/// floor) without settling within the plateau tolerance, so the order
+/// study cannot decide; it must say so, never refute the claim.
+#[test]
+fn ode_solvers_dop853_on_the_eccentric_orbit_is_never_refuted() {
+    use stepladder::measure::Verdict;
+    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
+    let orbit = KeplerEccentric::new(0.6).unwrap();
+    let record = global_order(&ode_solvers_dop853(), &orbit, &OrderSpec::default()).unwrap();
+    assert_ne!(record.verdict, Verdict::Fail, "{}", record.reason);
+    stepladder::guard::assert_symplectic(&ode_solvers_dop853(), &orbit);
+    stepladder::guard::assert_energy(&ode_solvers_dop853(), &orbit);
 }
 
 /// The f32 RK4 of ode_solvers: a fourth-order method in single precision
