@@ -15,10 +15,10 @@
 
 use crate::measure::Verdict;
 use crate::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use crate::measure::accuracy::pin::{PinOutcome, check_pin};
 use crate::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
-use crate::pin::{PinOutcome, check_pin};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 
@@ -71,7 +71,7 @@ pub fn assert_energy<M: Scheme, S: Scene<D>, const D: usize>(
     record
 }
 
-/// Checks the error constant against the pin in `dir` (see [`crate::pin`]),
+/// Checks the error constant against the pin in `dir` (see [`crate::measure::accuracy::pin`]),
 /// writing the pin if it is missing; panics if it moved beyond the pin's
 /// tolerance, or if the order study does not pass.
 pub fn assert_pinned<M: Scheme, S: Scene<D>, const D: usize>(

@@ -26,7 +26,7 @@
 //!   a hand-written floor.
 //! - [`guard`]: one-line assertions of a scheme's claims for a downstream
 //!   crate's tests, with the deciding figures in the failure message, and
-//!   [`guard_claims!`], one `#[test]` per claim; [`pin`] pins the error
+//!   [`guard_claims!`], one `#[test]` per claim; [`measure::accuracy::pin`] pins the error
 //!   constant in the crate's own snapshot folder.
 //! - [`scheme::BlackBox`] guards an integrator that only runs on `f64` or
 //!   `f32` (a step function on slices, from any crate);
@@ -61,7 +61,6 @@ pub mod guard;
 pub mod ladder;
 pub mod measure;
 pub mod parallel;
-pub mod pin;
 #[cfg(feature = "report")]
 pub mod report;
 pub mod run;

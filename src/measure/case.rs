@@ -5,10 +5,10 @@
 
 use crate::error::Error;
 use crate::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use crate::measure::accuracy::pin::{PinOutcome, check_pin};
 use crate::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
-use crate::pin::{PinOutcome, check_pin};
 use crate::scene::{AnyScene, Hidden, Scene, SceneMeta, SceneVisitor};
 use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor};
 
@@ -29,7 +29,7 @@ pub trait Case: Send + Sync {
     fn symplectic(&self, spec: &SymplecticSpec) -> Result<SymplecticRecord, Error>;
     /// The forward-and-back study.
     fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error>;
-    /// The error-constant pin in `dir` ([`crate::pin::check_pin`]).
+    /// The error-constant pin in `dir` ([`crate::measure::accuracy::pin::check_pin`]).
     fn pin(&self, dir: &std::path::Path) -> Result<PinOutcome, String>;
 }
 

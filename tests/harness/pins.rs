@@ -1,12 +1,12 @@
 //! The catalogue pins its own error constants, as a downstream crate does
-//! (see `stepladder::pin`): one file per scheme and built-in scene in
+//! (see `stepladder::measure::accuracy::pin`): one file per scheme and built-in scene in
 //! `snapshots/pins/`, committed. A refactor that keeps a scheme's order but
 //! moves its error at the pinned step by more than 1% fails here.
 
 use std::path::Path;
+use stepladder::measure::accuracy::pin::PinOutcome;
 use stepladder::measure::case::case;
 use stepladder::parallel::{default_threads, parallel_map};
-use stepladder::pin::PinOutcome;
 use stepladder::scene::AnyScene;
 use stepladder::scheme::scheme_ids;
 

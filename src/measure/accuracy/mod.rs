@@ -4,6 +4,8 @@ pub mod fit;
 pub mod order;
 pub mod order_verdict;
 pub mod phase;
+pub mod pin;
+pub mod rung;
 pub mod scene_check;
 pub mod trajectory;
 pub mod window;

@@ -5,7 +5,7 @@
 use crate::ladder::LadderEnd;
 use crate::measure::Verdict;
 use crate::measure::accuracy::fit::OrderFit;
-use crate::measure::accuracy::order::{DropReason, OrderReduction, Reference, Rung};
+use crate::measure::accuracy::rung::{DropReason, OrderReduction, Reference, Rung};
 use crate::measure::accuracy::window::Analysis;
 use crate::measure::accuracy::window::median_of;
 use crate::tolerance::{self, ERROR_CEILING, MIN_WINDOW, ORDER_TOLERANCE, REFERENCE_RUNGS};

@@ -3,7 +3,7 @@
 //! which the order is fitted.
 
 use crate::measure::accuracy::fit::{OrderFit, order_fit_with_round_off};
-use crate::measure::accuracy::order::DropReason;
+use crate::measure::accuracy::rung::DropReason;
 use crate::tolerance::{
     self, ERROR_CEILING, MIN_WINDOW, MIN_WINDOW_HALVINGS, REFERENCE_RUNGS, WINDOW_RUNGS,
 };
