@@ -54,7 +54,7 @@
 
 use crate::scene::Scene;
 use crate::scheme::{Scheme, SchemeMeta, StepFailure};
-use crate::state::{Real, State};
+use crate::state::{Real, State, as_f64};
 use nalgebra::SVector;
 use std::any::Any;
 use std::fmt::Debug;
@@ -162,7 +162,7 @@ where
         h: R,
     ) -> Result<(), StepFailure> {
         let state = plain::<State<D, R>, State<D, f64>>(state);
-        let h = *plain::<R, f64>(&mut { h });
+        let h = as_f64(h).expect("an f64 state comes with an f64 step");
         let mut q = [T::default(); D];
         let mut v = [T::default(); D];
         for i in 0..D {
@@ -256,7 +256,7 @@ mod tests {
         let h = 0.01;
         let a = run(&bb, &KeplerCircular, h, 1000);
         let b = run(&VELOCITY_VERLET, &KeplerCircular, h, 1000);
-        assert!((a.q - b.q).amax() < 1e-12, "{a:?} vs {b:?}");
+        assert_eq!(a, b);
         assert_eq!(bb.epsilon(), f64::EPSILON);
         assert!(!bb.differentiable());
     }

@@ -3,7 +3,7 @@
 
 use crate::scene::Scene;
 use crate::scheme::{Scheme, SchemeMeta, StepFailure};
-use crate::state::{Real, State};
+use crate::state::{Real, State, as_f64};
 use std::any::Any;
 
 /// Runs the scheme `M` in `f32` whenever a study runs it on `f64` states:
@@ -104,10 +104,6 @@ impl<M: Scheme> Scheme for SinglePrecision<M> {
     fn epsilon(&self) -> f64 {
         f32::EPSILON as f64
     }
-}
-
-fn as_f64<R: Real>(x: R) -> Option<f64> {
-    (&x as &dyn Any).downcast_ref::<f64>().copied()
 }
 
 #[cfg(test)]

