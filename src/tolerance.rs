@@ -232,6 +232,15 @@ pub fn round_off_energy(steps: u64, epsilon: f64) -> f64 {
 /// computed to about 1e-15) to fit a leading term from.
 pub const PHASE_FLOOR: f64 = 1e-8;
 
+/// How far outside the unit circle a root of a multistep recurrence may be
+/// computed before the recurrence counts as unstable. The roots are
+/// eigenvalues of the companion matrix, with a backward error of a few eps
+/// times its norm (about 10 for the methods here): a simple root moves by
+/// about 1e-15, two roots about to collide by its square root, 1e-7. A root
+/// of modulus `1 + 1e-6` needs 10^6 steps to grow e-fold, longer than the
+/// runs here, so nothing resolvable is missed.
+pub const RECURRENCE_ROOT_SLACK: f64 = 1e-6;
+
 /// Largest relative difference between a measured and an analytic phase
 /// coefficient. The measurement at `z` carries the next term of the series,
 /// relatively `O(z^2)`, about 1e-4 at the finest resolvable `z` of a

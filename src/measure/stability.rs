@@ -7,7 +7,7 @@
 //! spectral radius is at most one. The boundaries of the stable set are
 //! found on a scan and bisected.
 
-use crate::measure::accuracy::phase::one_step_matrix;
+use crate::measure::accuracy::phase::{one_step_matrix, polynomial_roots, roots_bounded};
 use crate::scheme::Scheme;
 use crate::tolerance::{STABILITY_BISECTION, STABILITY_SLACK_EPS_PER_EVALUATION};
 use nalgebra::Matrix2;
@@ -59,6 +59,9 @@ pub fn spectral_radius(m: &Matrix2<f64>) -> f64 {
 /// turn round-off of `1e-16` into `1e-8`; the slack covers the round-off of
 /// the map's entries (see [`STABILITY_SLACK_EPS_PER_EVALUATION`]).
 pub fn is_stable<M: Scheme>(scheme: &M, z: f64) -> bool {
+    if let Some(polynomial) = scheme.recurrence_on_oscillator(z) {
+        return roots_bounded(&polynomial_roots(&polynomial));
+    }
     let slack = STABILITY_SLACK_EPS_PER_EVALUATION
         * scheme.epsilon()
         * scheme.meta().force_evaluations.max(1) as f64;

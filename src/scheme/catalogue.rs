@@ -2,6 +2,7 @@
 //! table) plus one line here; every test, study and report loops over it.
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
+use super::multistep::QUINLAN_TREMAINE8;
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
@@ -43,6 +44,7 @@ catalogue![
     PEFRL,
     YOSHIDA6,
     KAHAN_LI8,
+    QUINLAN_TREMAINE8,
 ];
 
 /// Every scheme id, in catalogue order.

@@ -12,6 +12,7 @@ pub mod compensated;
 mod composition;
 mod euler;
 mod implicit;
+mod multistep;
 mod runge_kutta;
 mod single_precision;
 mod splitting;
@@ -26,6 +27,7 @@ pub use compensated::{
 pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
 pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
+pub use multistep::{MultistepCarry, QUINLAN_TREMAINE8, SymmetricMultistep};
 pub use runge_kutta::Rk4;
 pub use single_precision::{SingleCarry, SinglePrecision};
 pub use splitting::{EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
@@ -170,6 +172,16 @@ pub trait Scheme {
     /// scale with it.
     fn epsilon(&self) -> f64 {
         f64::EPSILON
+    }
+
+    /// For a multistep scheme, whose state is more than `(q, v)`: the
+    /// characteristic polynomial of its recurrence on the oscillator
+    /// `x'' = -x` at `h = z`, coefficients from the constant term up. Its
+    /// iterates are combinations of `x^n` over the polynomial's roots, so
+    /// stability and phase are read off the roots. `None` for a one-step
+    /// scheme, whose one-step matrix the studies measure directly.
+    fn recurrence_on_oscillator(&self, _z: f64) -> Option<Vec<f64>> {
+        None
     }
 }
 

@@ -310,8 +310,30 @@ pub fn select_window(data: &[RungData], scale: f64) -> WindowChoice {
     {
         first -= 1;
     }
-    let window = (b + 1 - first >= MIN_WINDOW && halvings(first) >= MIN_WINDOW_HALVINGS)
-        .then_some((first, b));
+    // Too short to decide, the window may still reach back along a settling
+    // next term. A term `b h^q` (q >= 1) of the error expansion moves the
+    // local order by about `q b h^q`: the local orders approach their limit
+    // geometrically, each difference of neighbours at most the step ratio
+    // `h_(i+1)/h_i` times the coarser difference. A curved error drifting
+    // through the plateau changes its local order by equal differences per
+    // rung (or sweeps back through a cancellation), which this rejects; so is
+    // a step away from the plateau. Rungs join only while the window needs
+    // them, and the fit then models the term.
+    let short = |first: usize| b + 1 - first < MIN_WINDOW || halvings(first) < MIN_WINDOW_HALVINGS;
+    while first > a && first + 2 <= b && short(first) {
+        let step = local(first + 1) - local(first);
+        let next = local(first + 2) - local(first + 1);
+        let shrink = data[first + 1].h / data[first].h;
+        let settling = (local(first) - median).abs() > tolerance
+            && step * (median - local(first)) > 0.0
+            && step * next > 0.0
+            && next.abs() <= step.abs() * shrink;
+        if !settling {
+            break;
+        }
+        first -= 1;
+    }
+    let window = (!short(first)).then_some((first, b));
     for (i, slot) in dropped.iter_mut().enumerate().take(first).skip(a) {
         let strays = (local(i + 1) - median).abs() > tolerance;
         *slot = Some(if strays || window.is_none() {
@@ -406,6 +428,67 @@ mod tests {
                 .iter()
                 .all(|d| *d == Some(DropReason::RoundOff))
         );
+    }
+
+    /// A ladder of four rungs per halving from `h0`, as the order study
+    /// builds for an eighth-order claim.
+    fn quarter_ladder(
+        h0: f64,
+        e: impl Fn(f64) -> f64,
+        round_off: f64,
+        n: i32,
+    ) -> Vec<RungData> {
+        (0..n)
+            .map(|k| h0 * 2f64.powf(-0.25 * k as f64))
+            .map(|h| RungData {
+                h,
+                error: Some(e(h)),
+                round_off,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_settling_next_term_extends_a_window_the_floor_cut_short() {
+        // e = h^8 (1 - 7 h^2), the shape of a symmetric multistep method's
+        // error on the circular orbit (h in units of 1/w): the local order
+        // climbs from 7.4 to 7.97 while the round-off floor (1e-12) stops
+        // the ladder; the plateau alone spans 1.75 halvings, too few
+        let data = quarter_ladder(0.23, |h| h.powi(8) * (1.0 - 7.0 * h * h), 1e-12, 16);
+        let a = analyse(&data, 1.0);
+        let (first, last) = a.choice.window.expect("a window along the settling term");
+        let median = a.choice.median_local_order.unwrap();
+        let coarsest = local_order_of(&data, first + 1).unwrap();
+        assert!(
+            (coarsest - median).abs() > tolerance::plateau_tolerance(median),
+            "the settling rule was not needed: {coarsest} vs {median}"
+        );
+        assert!((data[first].h / data[last].h).log2() >= MIN_WINDOW_HALVINGS);
+        let [lo, hi] = a.ci95.unwrap();
+        assert!(lo <= 8.0 && 8.0 <= hi, "[{lo}, {hi}]");
+        assert!((a.fit.unwrap().order - 8.0).abs() <= tolerance::ORDER_TOLERANCE);
+    }
+
+    #[test]
+    fn deviations_shrinking_slower_than_the_step_do_not_join_a_window() {
+        // local orders drifting linearly in ln h, 8 + ln(h / 0.05): a curved
+        // error, its local order changing by equal differences per rung
+        let data = quarter_ladder(
+            0.23,
+            |h: f64| h.powi(8) * (0.5 * (h / 0.05).ln().powi(2)).exp(),
+            1e-12,
+            16,
+        );
+        let w = select_window(&data, 1.0);
+        assert!(w.window.is_none(), "{:?}", w.window);
+        // nor is a sweep through a cancellation: e = h^8 |1 - 10 h| vanishes
+        // at h = 0.1 inside the ladder, its local orders running off to
+        // -inf and back from +inf; no window may reach across the zero
+        let data = quarter_ladder(0.23, |h| h.powi(8) * (1.0 - 10.0 * h).abs(), 1e-14, 24);
+        let w = select_window(&data, 1.0);
+        if let Some((first, _)) = w.window {
+            assert!(data[first].h < 0.1, "window from h = {} spans the zero", data[first].h);
+        }
     }
 
     #[test]
