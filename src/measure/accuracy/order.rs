@@ -160,6 +160,31 @@ fn comparison_steps(steps: u64) -> impl Iterator<Item = u64> {
     (0..=count).map(move |j| j * steps / count)
 }
 
+/// The error of one rung measured as the order study measures it against
+/// an exact solution: the largest phase-space distance to it at the
+/// comparison steps of `steps` steps over `t_end`. `None` when the scene has
+/// no exact solution or the run does not complete.
+pub fn exact_rung_error<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    t_end: f64,
+    steps: u64,
+) -> Option<f64> {
+    scene.exact(0.0)?;
+    let h = t_end / steps as f64;
+    let mut at = comparison_steps(steps).peekable();
+    let mut worst = 0.0f64;
+    let outcome = integrate(scheme, scene, &scene.initial(), h, steps, |n, _, s| {
+        if at.next_if_eq(&n).is_some() {
+            let t = if n == steps { t_end } else { n as f64 * h };
+            if let Some(exact) = scene.exact(t) {
+                worst = worst.max(scene.phase_distance(s, &exact));
+            }
+        }
+    });
+    outcome.completed().then_some(worst)
+}
+
 /// Measures the global order of `scheme` on `scene`.
 ///
 /// ```

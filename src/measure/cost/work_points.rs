@@ -8,9 +8,11 @@
 //!   suite's cost for the same numbers), with their force evaluations added:
 //!   counted from the metadata for an explicit scheme, and by running the
 //!   rung again on a counting scene for an implicit one, whose iterations
-//!   vary from rung to rung. The order study's ladder runs down to the
-//!   round-off floor or its step cap, so it covers every target a scheme can
-//!   reach at those steps;
+//!   vary from rung to rung. The order study's ladder stops where round-off
+//!   would disturb an order fit, which can be above a target the error
+//!   itself still reaches: where the smallest target is not met and the
+//!   error is still falling, the ladder goes on at the same ratio
+//!   ([`beyond_the_floor`]);
 //! - the **energy error on a long run**, the largest `|E - E0|/|E0|` over
 //!   [`ENERGY_PERIODS`] periods, on a ladder of its own that halves the step
 //!   from 1/8 period until the error is below the smallest target, stops
@@ -204,6 +206,65 @@ pub fn start_evaluations<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     counted.evaluations()
 }
 
+/// Most rungs [`beyond_the_floor`] adds: four halvings of the step at the
+/// order study's densest ratio.
+pub const EXTRA_RUNGS: usize = 16;
+
+/// Work points past the order study's finest rung, for a target it did not
+/// reach: the same error (against the exact solution, at the same
+/// comparison steps), each rung `ratio` times the previous one's steps,
+/// while the error falls by at least a tenth of what the scheme's order
+/// promises per rung (past that it is round-off, not truncation, and
+/// stepping finer only costs more) and the cost stays under the order
+/// study's cap.
+pub fn beyond_the_floor<M: Scheme, S: Scene<D> + Clone, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    record: &OrderRecord,
+    finest: &WorkPoint,
+) -> Vec<WorkPoint> {
+    let smallest = TARGETS.iter().copied().fold(f64::INFINITY, f64::min);
+    let measured: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
+    let (Some(error), [.., coarser, last]) = (finest.error, measured.as_slice()) else {
+        return Vec::new();
+    };
+    let ratio = last.steps as f64 / coarser.steps as f64;
+    let promised = ratio.powi(scheme.meta().order as i32);
+    let per_step = finest.evaluations as f64 / finest.steps as f64;
+    let mut points = Vec::new();
+    let (mut steps, mut previous) = (finest.steps, error);
+    while previous > smallest && points.len() < EXTRA_RUNGS {
+        steps = ((steps as f64 * ratio).round() as u64).max(steps + 1);
+        if per_step * steps as f64 > crate::ladder::AUTO_MAX_RUNG_EVALUATIONS as f64 {
+            break;
+        }
+        let Some(error) =
+            crate::measure::accuracy::order::exact_rung_error(scheme, scene, record.t_end, steps)
+        else {
+            break;
+        };
+        let h = record.t_end / steps as f64;
+        let evaluations = if scheme.meta().implicit {
+            let counted = Counted::new(scene.clone());
+            let _ = integrate(scheme, &counted, &counted.initial(), h, steps, |_, _, _| {});
+            counted.evaluations()
+        } else {
+            start_evaluations(scheme, scene, h) + steps * scheme.meta().force_evaluations as u64
+        };
+        points.push(WorkPoint {
+            h,
+            steps,
+            evaluations,
+            error: Some(error),
+        });
+        if error > previous / (1.0 + 0.1 * (promised - 1.0)) {
+            break;
+        }
+        previous = error;
+    }
+    points
+}
+
 /// The order study's rungs as work points: the steps and errors of `record`
 /// with the force evaluations each rung spent. For an explicit scheme they
 /// are the start-up's plus `force_evaluations` per step taken; an implicit
@@ -335,7 +396,10 @@ pub fn scheme_work<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     scene: &S,
     record: &OrderRecord,
 ) -> SchemeWork {
-    let global = global_points(scheme, scene, record);
+    let mut global = global_points(scheme, scene, record);
+    if let Some(finest) = global.iter().rev().find(|p| p.error.is_some()).copied() {
+        global.extend(beyond_the_floor(scheme, scene, record, &finest));
+    }
     let energy = energy_points(scheme, scene);
     let evaluations = |p: &WorkPoint| p.evaluations as f64;
     SchemeWork {
