@@ -147,7 +147,14 @@ fn stability_section(records: &SuiteRecords) -> String {
          power-bounded (spectral radius <= 1), measured from each scheme's own step and \
          bisected to 1e-10; every stable interval found on a scan to `z = 1e6`; and the \
          limit per force evaluation, the stable step a unit of work buys. `none` means \
-         stable for every step scanned.\n\n",
+         stable for every step scanned. A multistep scheme's state is its whole window, so \
+         its stability is read off the roots of its recurrence on the oscillator, \
+         `rho(x) + z^2 sigma(x)`, instead: a symmetric method's roots stay on the unit \
+         circle until the root that carries the motion meets a spurious one, a resonance, \
+         where two of them leave it. That is far below the limit of a one-step method of \
+         the same order, and on an eccentric orbit, whose force carries every harmonic of \
+         the orbital frequency, a resonance can be met at steps the oscillator allows (the \
+         energy table shows such an orbit lost).\n\n",
     );
     out.push_str(&stability_table(&records.stability));
     let labels: Vec<&str> = records.stability.iter().map(|r| r.scheme).collect();
