@@ -2,6 +2,7 @@
 //! table) plus one line here; every test, study and report loops over it.
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
+use super::nystrom_rk::{DPRKN6, NYSTROM4};
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
@@ -43,6 +44,8 @@ catalogue![
     PEFRL,
     YOSHIDA6,
     KAHAN_LI8,
+    DPRKN6,
+    NYSTROM4,
 ];
 
 /// Every scheme id, in catalogue order.
