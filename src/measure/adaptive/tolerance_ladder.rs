@@ -54,8 +54,8 @@
 use super::integrator::{AdaptiveClaims, AdaptiveIntegrator, RunEnd};
 use crate::error::Error;
 use crate::measure::Verdict;
-use crate::measure::cost::work_points::{TargetCost, targets_of};
 use crate::measure::accuracy::fit::{MIN_POINTS, OrderFit, order_fit_with_round_off, power_law};
+use crate::measure::cost::work_points::{TargetCost, targets_of};
 use crate::measure::geometry::energy::{EnergyClass, classify_growth, energy_norm};
 use crate::scene::Scene;
 use crate::state::State;
