@@ -159,6 +159,8 @@ struct WorkOutput {
     #[serde(flatten)]
     record: crate::suite::work_precision::WorkRecord,
     timing: crate::suite::work_precision::WorkTiming,
+    /// The tolerance ladders of the adaptive integrators on the same scene.
+    adaptive: Vec<crate::measure::adaptive::ToleranceLadderRecord>,
 }
 
 pub(super) fn work(args: &WorkArgs) -> Result<ExitCode, Error> {
@@ -174,10 +176,26 @@ pub(super) fn work(args: &WorkArgs) -> Result<ExitCode, Error> {
         &scene,
         args.threads.unwrap_or_else(default_threads),
     )?;
+    let adaptive = crate::suite::adaptive::INTEGRATORS
+        .iter()
+        .map(|&i| {
+            crate::suite::adaptive::ladder_of(
+                i,
+                &scene,
+                &crate::measure::adaptive::ToleranceLadderSpec::default(),
+            )
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
     if args.json {
-        print_json(&WorkOutput { record, timing });
+        print_json(&WorkOutput {
+            record,
+            timing,
+            adaptive,
+        });
     } else {
         print!("{}", report::work_scene(&record));
+        println!();
+        print!("{}", report::adaptive_summary_table(&adaptive));
         println!();
         print!("{}", report::time_to_target_table(&timing));
     }

@@ -13,6 +13,7 @@
 //! - [`hard`]: eccentric orbits, the separatrix, escape or trapped.
 
 pub mod accuracy;
+pub mod adaptive;
 pub mod case;
 pub mod cost;
 pub mod geometry;

@@ -1,6 +1,7 @@
 //! REPORT.md from the suite's records. Nothing is computed here: every figure
 //! comes from a record, and the same records feed the CLI and the snapshots.
 
+mod adaptive_tables;
 pub mod figures;
 mod hard_tables;
 mod markdown;
@@ -8,6 +9,9 @@ pub mod round_off_tables;
 mod summary;
 mod work_tables;
 
+pub use adaptive_tables::{
+    adaptive_section, ladder_table, summary_table as adaptive_summary_table,
+};
 pub use hard_tables::{
     eccentric_energy_grid, eccentric_order_table, escape_table, following_rungs, following_table,
     hard_cases_section, predicted_boundary, round_off_table,
@@ -44,6 +48,7 @@ pub fn render(records: &SuiteRecords) -> String {
         &records.speed,
         &records.work_timing,
     ));
+    out.push_str(&adaptive_tables::timing_section(&records.adaptive));
     out
 }
 
@@ -182,6 +187,7 @@ fn rest_of_report(records: &SuiteRecords) -> String {
     out.push('\n');
     out.push_str(&hard_cases_section(&records.hard));
     out.push_str(&work_tables::deterministic_section(&records.work));
+    out.push_str(&adaptive_tables::adaptive_section(&records.adaptive));
     out.push_str(&round_off_tables::sections(&records.roundoff));
     out.push_str(&appendix(records));
     out

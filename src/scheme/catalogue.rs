@@ -3,6 +3,7 @@
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
 use super::multistep::QUINLAN_TREMAINE8;
+use super::nystrom_rk::{DPRKN6, NYSTROM4};
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
@@ -45,6 +46,8 @@ catalogue![
     YOSHIDA6,
     KAHAN_LI8,
     QUINLAN_TREMAINE8,
+    DPRKN6,
+    NYSTROM4,
 ];
 
 /// Every scheme id, in catalogue order.

@@ -290,7 +290,9 @@ mod tests {
     /// `den sum_j alpha_j j^m - m (m-1) sum_j beta_j j^(m-2)`, exactly.
     fn order_residual<const K: usize>(s: &SymmetricMultistep<K>, m: u32) -> i128 {
         let den = s.beta_denominator as i128;
-        let lhs: i128 = (0..=K).map(|j| den * s.alpha[j] as i128 * power(j as i128, m)).sum();
+        let lhs: i128 = (0..=K)
+            .map(|j| den * s.alpha[j] as i128 * power(j as i128, m))
+            .sum();
         let rhs: i128 = if m < 2 {
             0
         } else {
@@ -392,7 +394,10 @@ mod tests {
         let exact = osc.exact(t).unwrap();
         let error = osc.phase_distance(&last, &exact);
         let predicted = SY8.phase.coefficient.abs() * z.powi(8) * t;
-        assert!((error / predicted - 1.0).abs() < 0.05, "{error:e} vs {predicted:e}");
+        assert!(
+            (error / predicted - 1.0).abs() < 0.05,
+            "{error:e} vs {predicted:e}"
+        );
     }
 
     #[test]
@@ -412,6 +417,11 @@ mod tests {
             }
             d
         };
-        assert!(gap(limit - 1e-6) < 1e-2 && gap(0.3) > 0.1, "{} {}", gap(limit), gap(0.3));
+        assert!(
+            gap(limit - 1e-6) < 1e-2 && gap(0.3) > 0.1,
+            "{} {}",
+            gap(limit),
+            gap(0.3)
+        );
     }
 }

@@ -5,6 +5,7 @@
 use crate::error::Error;
 use crate::measure::case::{Case, case};
 
+pub mod adaptive;
 pub mod hard_cases;
 pub mod round_off;
 pub mod work_precision;
@@ -70,6 +71,8 @@ pub struct SuiteRecords {
     /// Every scheme's cost of a step against the hand-written floor
     /// (machine-dependent).
     pub speed: crate::measure::cost::step_time::SpeedRecord,
+    /// The tolerance ladders of the adaptive integrators.
+    pub adaptive: crate::suite::adaptive::AdaptiveRecords,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -153,6 +156,7 @@ pub fn run_suite(
     let corpus = crate::corpus::judge_all(&crate::corpus::entries(), threads)?;
     let roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
     let (work, work_timing, speed) = speed_against_error(&cases, threads);
+    let adaptive = crate::suite::adaptive::adaptive_study(threads)?;
     Ok(SuiteRecords {
         cases,
         phase,
@@ -165,6 +169,7 @@ pub fn run_suite(
         work,
         work_timing,
         speed,
+        adaptive,
         total: start.elapsed(),
         threads,
     })

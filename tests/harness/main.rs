@@ -1,6 +1,7 @@
 //! The harness's own tests, in one binary so that the catalogue x scenes
 //! suite, which several of them judge, runs once (see [`common::suite`]).
 
+mod adaptive;
 mod bad_input;
 mod broken;
 mod catalogue;

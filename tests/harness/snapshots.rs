@@ -3,7 +3,9 @@
 //! here means a refactor changed a result: review it with `cargo insta review`.
 
 use super::common::settings;
-use stepladder::report::{geometry_table, order_table, phase_table, stability_table};
+use stepladder::report::{
+    adaptive_summary_table, geometry_table, order_table, phase_table, stability_table,
+};
 
 #[test]
 fn suite_tables_are_unchanged() {
@@ -28,4 +30,16 @@ fn suite_tables_are_unchanged() {
          against their analytic limits; for the compositions this measurement is the answer.",
     )
     .bind(|| insta::assert_snapshot!("stability_table", stability_table(&records.stability)));
+    settings(
+        "Tolerance ladders of the adaptive integrators (own DPRKN6(4) pair, ode_solvers \
+         Dop853) on every scene: the fitted exponent of error ~ TOL^k with its interval and \
+         theory, evaluations and error at three tolerances, the energy class of a long run \
+         and the round trip at TOL = 1e-8, the verdict.",
+    )
+    .bind(|| {
+        insta::assert_snapshot!(
+            "adaptive_table",
+            adaptive_summary_table(&records.adaptive.ladders)
+        )
+    });
 }

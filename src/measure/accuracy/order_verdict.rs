@@ -145,6 +145,21 @@ fn judge_fit(
             advice: None,
             reduction: None,
         },
+        Err(why) if ci[1] >= claim && reduction.is_none() => {
+            match still_rising_to(claim, rungs, a, b) {
+                Some(limit) => Judgement::inconclusive(
+                    format!(
+                        "{why}: {over}, but the finest local orders still rise towards the \
+                         claim (heading for {limit:.2}): a cancellation in the leading error \
+                         term not yet passed at these steps"
+                    ),
+                    "shorten t_end, which lowers the round-off floor and lets the ladder reach \
+                     the steps where the claimed order's term dominates"
+                        .into(),
+                ),
+                None => Judgement::fail(format!("{why}: {over}"), reduction),
+            }
+        }
         Err(why) => {
             let fell = reduction.map_or(String::new(), |r| {
                 format!(
@@ -231,6 +246,36 @@ fn converges_elsewhere(rungs: &[Rung], scale: f64) -> Option<String> {
              another problem, or starts from another state)"
         )
     })
+}
+
+/// The limit the finest [`REFERENCE_RUNGS`] local orders of the window
+/// `a..=b` head for, when they rise steadily towards the claim: each above
+/// the last by less than the one before (a trend `l = p + c h` on a ladder
+/// of constant ratio gives increments shrinking like the steps), with
+/// Aitken's limit `l3 + d2 r / (1 - r)`, `r = d2 / d1`, within
+/// [`ORDER_TOLERANCE`] of the claim or above it.
+///
+/// The converse of [`order_reduction`]: past a cancellation of its leading
+/// error term a correct scheme's local order lies below its order for a
+/// while and rises back (`e = C h^p (1 + c h)`, `c < 0`, has local order
+/// `p + c h / (1 + c h)`); a fit over such a window is biased low however
+/// its interval is widened, so an estimate below the claim there does not
+/// refute it. The data cannot decide at these steps: the verdict is
+/// inconclusive, and the order study shortens `t_end` to reach finer ones.
+/// A scheme of lower order has local orders that settle below the claim
+/// (no steady rise, or a limit below it).
+fn still_rising_to(claim: f64, rungs: &[Rung], a: usize, b: usize) -> Option<f64> {
+    let locals: Vec<f64> = (a + 1..=b).filter_map(|i| rungs[i].local_order).collect();
+    let [l1, l2, l3] = *locals.get(locals.len().checked_sub(REFERENCE_RUNGS)?..)? else {
+        return None;
+    };
+    let (d1, d2) = (l2 - l1, l3 - l2);
+    if !(d1 > 0.0 && d2 > 0.0 && d2 < d1) {
+        return None;
+    }
+    let r = d2 / d1;
+    let limit = l3 + d2 * r / (1.0 - r);
+    (limit >= claim - ORDER_TOLERANCE).then_some(limit)
 }
 
 /// An order reduction at the fine end of the clean rungs `a..=b`: the local

@@ -432,12 +432,7 @@ mod tests {
 
     /// A ladder of four rungs per halving from `h0`, as the order study
     /// builds for an eighth-order claim.
-    fn quarter_ladder(
-        h0: f64,
-        e: impl Fn(f64) -> f64,
-        round_off: f64,
-        n: i32,
-    ) -> Vec<RungData> {
+    fn quarter_ladder(h0: f64, e: impl Fn(f64) -> f64, round_off: f64, n: i32) -> Vec<RungData> {
         (0..n)
             .map(|k| h0 * 2f64.powf(-0.25 * k as f64))
             .map(|h| RungData {
@@ -487,7 +482,11 @@ mod tests {
         let data = quarter_ladder(0.23, |h| h.powi(8) * (1.0 - 10.0 * h).abs(), 1e-14, 24);
         let w = select_window(&data, 1.0);
         if let Some((first, _)) = w.window {
-            assert!(data[first].h < 0.1, "window from h = {} spans the zero", data[first].h);
+            assert!(
+                data[first].h < 0.1,
+                "window from h = {} spans the zero",
+                data[first].h
+            );
         }
     }
 

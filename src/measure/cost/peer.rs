@@ -10,11 +10,20 @@
 //! force evaluation; the count includes rejected steps and the start-up's
 //! initial step-size guess). Output is requested at the steps it takes, not
 //! interpolated, so no evaluation is spent on dense output.
+//!
+//! The peer runs through the same [`AdaptiveIntegrator`] trait as the
+//! catalogue's own adaptive pair, so the tolerance ladder
+//! ([`crate::measure::adaptive::tolerance_ladder`]) judges both alike.
 
+use crate::error::Error;
+use crate::measure::adaptive::integrator::{
+    AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request,
+};
 use crate::measure::cost::work_points::{TargetCost, WorkPoint, targets_of};
 use crate::measure::geometry::energy::energy_norm;
 use crate::scene::Scene;
 use crate::state::State;
+use ode_solvers::dop_shared::IntegrationError;
 use ode_solvers::{Dop853, OutputType, SVector, System};
 use serde::Serialize;
 use std::cell::Cell;
@@ -81,6 +90,8 @@ pub struct PeerRun<const D: usize> {
     /// `(t, state)` at the start and after every accepted step; empty when
     /// the solver gave up.
     pub trajectory: Vec<(f64, State<D>)>,
+    /// How the run ended.
+    pub end: RunEnd,
     /// Wall time of the integration (set-up and output included, as a user
     /// would spend it).
     pub time: Duration,
@@ -95,16 +106,23 @@ pub fn run_peer<S: Scene<D>, const D: usize, const N: usize>(
     t_end: f64,
     tol: f64,
 ) -> Option<PeerRun<D>> {
-    if N != 2 * D {
-        return None;
-    }
+    (N == 2 * D).then(|| solve::<S, D, N>(scene, &scene.initial(), t_end, tol))
+}
+
+/// The peer from `start` over `[0, t_end]`, `N = 2 D`.
+fn solve<S: Scene<D>, const D: usize, const N: usize>(
+    scene: &S,
+    start: &State<D>,
+    t_end: f64,
+    tol: f64,
+) -> PeerRun<D> {
     let evaluations = Cell::new(0);
     let clock = Instant::now();
     let system = Newton {
         scene,
         evaluations: &evaluations,
     };
-    let y0: SVector<f64, N> = pack(&scene.initial());
+    let y0: SVector<f64, N> = pack(start);
     let mut solver = Dop853::from_param(
         system,
         0.0,
@@ -126,22 +144,80 @@ pub fn run_peer<S: Scene<D>, const D: usize, const N: usize>(
     let result = solver.integrate();
     let time = clock.elapsed();
     let counted = evaluations.get();
-    let (stats, trajectory) = match result {
+    let (stats, trajectory, end) = match result {
         Ok(stats) => {
             let t = solver.x_out().iter().copied();
             let y = solver.y_out().iter().map(unpack::<D, N>);
-            (Some(stats), t.zip(y).collect())
+            (Some(stats), t.zip(y).collect(), RunEnd::Reached)
         }
-        Err(_) => (None, Vec::new()),
+        Err(e) => {
+            let end = match e {
+                IntegrationError::MaxNumStepReached { .. } => RunEnd::StepLimit,
+                IntegrationError::StepSizeUnderflow { .. } => RunEnd::StepUnderflow,
+                IntegrationError::StiffnessDetected { .. } => RunEnd::GaveUp,
+            };
+            (None, Vec::new(), end)
+        }
     };
-    Some(PeerRun {
+    PeerRun {
         evaluations: stats.map_or(counted, |s| s.num_eval as u64),
         counted,
         accepted: stats.map_or(0, |s| s.accepted_steps as u64),
         rejected: stats.map_or(0, |s| s.rejected_steps as u64),
         trajectory,
+        end,
         time,
-    })
+    }
+}
+
+/// The peer as an [`AdaptiveIntegrator`]. Its order-8 solution is advanced
+/// with an estimate that behaves like `h^8` once its third-order part
+/// dominates (see [`crate::measure::adaptive::tolerance_ladder`]), so the
+/// global error should follow the tolerance with exponent 1.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Dop853Peer;
+
+impl AdaptiveIntegrator for Dop853Peer {
+    fn name(&self) -> &'static str {
+        PEER_NAME
+    }
+
+    fn claims(&self) -> AdaptiveClaims {
+        AdaptiveClaims {
+            order: 8,
+            estimate_power: 8,
+            proportionality: crate::measure::adaptive::proportionality_exponent(8, 8),
+            symplectic: false,
+            symmetric: false,
+        }
+    }
+
+    fn integrate<S: Scene<D>, const D: usize>(
+        &self,
+        scene: &S,
+        start: &State<D>,
+        t_end: f64,
+        tol: f64,
+    ) -> Result<AdaptiveRun<D>, Error> {
+        check_request(t_end, tol)?;
+        let run = match D {
+            1 => solve::<S, D, 2>(scene, start, t_end, tol),
+            2 => solve::<S, D, 4>(scene, start, t_end, tol),
+            _ => {
+                return Err(Error::InvalidScene(format!(
+                    "{PEER_NAME} is run on scenes of one or two dimensions, not {D}"
+                )));
+            }
+        };
+        Ok(AdaptiveRun {
+            trajectory: run.trajectory,
+            evaluations: run.evaluations,
+            accepted: run.accepted,
+            rejected: run.rejected,
+            end: run.end,
+            time: run.time,
+        })
+    }
 }
 
 /// One tolerance of the peer, as measured.
@@ -219,9 +295,9 @@ fn measure<S: Scene<D>, const D: usize>(
     repeats: usize,
     error: impl Fn(f64, &State<D>) -> f64,
 ) -> Option<(PeerPoint, f64)> {
-    let mut best: Option<PeerRun<D>> = None;
+    let mut best: Option<AdaptiveRun<D>> = None;
     for _ in 0..repeats.max(1) {
-        let run = run_peer_any(scene, t_end, tol)?;
+        let run = Dop853Peer.run(scene, t_end, tol).ok()?;
         if best.as_ref().is_none_or(|b| run.time < b.time) {
             best = Some(run);
         }
@@ -291,4 +367,30 @@ pub fn peer_targets(points: &[PeerPoint]) -> Vec<TargetCost> {
         .map(|p| (p.evaluations as f64, p.error))
         .collect();
     targets_of(&data)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::KeplerEccentric;
+
+    /// The trait runs the very solver the work tables use, and refuses what
+    /// the solver cannot take instead of passing it on.
+    #[test]
+    fn the_trait_runs_the_same_solver_and_refuses_bad_requests() {
+        let scene = KeplerEccentric::default();
+        let direct = run_peer_any(&scene, 10.0, 1e-8).unwrap();
+        let through = Dop853Peer.run(&scene, 10.0, 1e-8).unwrap();
+        assert_eq!(direct.evaluations, through.evaluations);
+        assert_eq!(direct.evaluations, direct.counted);
+        assert_eq!(
+            (direct.accepted, direct.rejected),
+            (through.accepted, through.rejected)
+        );
+        assert_eq!(direct.trajectory, through.trajectory);
+        assert_eq!(through.end, RunEnd::Reached);
+        for (t_end, tol) in [(10.0, 0.0), (10.0, -1.0), (f64::NAN, 1e-8)] {
+            assert!(Dop853Peer.run(&scene, t_end, tol).is_err());
+        }
+    }
 }

@@ -1,0 +1,154 @@
+//! The report's "Adaptive step control" section: the tolerance ladders of
+//! the catalogue's own DPRKN6(4) pair and the peer (deterministic), and
+//! their wall times (machine-dependent).
+
+use super::markdown::{Table, opt, order, sci};
+use crate::measure::adaptive::tolerance_ladder::{
+    ENERGY_PERIODS, GEOMETRY_TOLERANCE, MIN_FIT_POINTS, ROUND_OFF_SHARE, ToleranceLadderRecord,
+};
+use crate::suite::adaptive::AdaptiveRecords;
+use crate::tolerance::ERROR_CEILING;
+use std::fmt::Write as _;
+
+/// The tolerances whose costs the summary table shows.
+pub const SHOWN_TOLERANCES: [f64; 3] = [1e-6, 1e-9, 1e-12];
+
+/// The deterministic section.
+pub fn adaptive_section(records: &AdaptiveRecords) -> String {
+    let mut out = String::from("\n## Adaptive step control\n\n");
+    out.push_str(&method());
+    out.push_str(&summary_table(&records.ladders));
+    out.push_str("\n### Every tolerance\n\n");
+    for r in &records.ladders {
+        let _ = writeln!(out, "\n#### {} on `{}`\n", r.integrator, r.scene);
+        out.push_str(&ladder_table(r));
+    }
+    out
+}
+
+fn method() -> String {
+    format!(
+        "Each adaptive integrator runs from the scene's initial state to the order \
+         study's `t_end` at relative and absolute tolerance `TOL`, one a decade, and is \
+         judged like a fixed-step ladder: its error is the largest phase-space distance \
+         to the exact solution over its accepted steps, its cost the force evaluations it \
+         spent (rejected steps and the first step's guess included). An error-per-step \
+         controller whose estimate behaves like `h^m`, advancing with an order-`p` \
+         solution, settles at steps `h ~ TOL^(1/m)` and a global error `~ TOL^(p/m)` \
+         (Hairer, Nørsett, Wanner I, II.4): `6/5` for DPRKN6(4) (`m = q + 1 = 5`), `1` for \
+         DOP853, whose combined estimate behaves like `h^8`. The exponent is a straight \
+         line through `(ln TOL, ln error)` with its Student's t interval widened by how far \
+         the slope moves when one or two end points are dropped, over the points that \
+         reached `t_end` with an error below {ERROR_CEILING} and at least {} times the \
+         round-off bound `8 eps N scale` (at least {MIN_FIT_POINTS} points). At `TOL = \
+         {}` an energy run of {ENERGY_PERIODS} periods is classified by the growth of \
+         `|E - E(T)|` over its last two decades, and a round trip (to `t_end`, velocities \
+         reversed, back) is compared with the reversibility study's round-off bound. \
+         Neither method is symplectic or symmetric, so the energy is expected to drift and \
+         the round trip to miss by about the global error.\n\n",
+        1.0 / ROUND_OFF_SHARE,
+        sci(GEOMETRY_TOLERANCE),
+    )
+}
+
+/// One line per integrator and scene: exponent against theory, cost and
+/// error at a few tolerances, energy class and round trip.
+pub fn summary_table(records: &[ToleranceLadderRecord]) -> String {
+    let mut header: Vec<String> = [
+        "integrator",
+        "scene",
+        "error ~ TOL^k",
+        "95% interval",
+        "theory",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    for tol in SHOWN_TOLERANCES {
+        header.push(format!("evals / error at {tol:.0e}"));
+    }
+    header.extend([
+        "energy at 1e-8".to_string(),
+        "round trip".into(),
+        "verdict".into(),
+    ]);
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut t = Table::new(&header);
+    for r in records {
+        let mut row = vec![r.integrator.to_string(), format!("`{}`", r.scene)];
+        match &r.proportionality {
+            Some(p) => row.extend([
+                order(p.exponent),
+                format!("[{}, {}]", order(p.ci95[0]), order(p.ci95[1])),
+                order(p.theory),
+            ]),
+            None => row.extend(["-".into(), "-".into(), order(r.claims.proportionality)]),
+        }
+        for tol in SHOWN_TOLERANCES {
+            row.push(r.at(tol).map_or("-".into(), |p| {
+                format!("{} / {}", p.evaluations, opt(p.error, sci))
+            }));
+        }
+        row.push(r.energy.map_or("-".into(), |e| {
+            format!(
+                "{} (g = {})",
+                e.class.map_or("-", |c| c.name()),
+                opt(e.growth_exponent, |g| format!("{g:.2}"))
+            )
+        }));
+        row.push(r.round_trip.map_or("-".into(), |rt| {
+            format!(
+                "{} ({})",
+                opt(rt.distance, sci),
+                if rt.returns { "returns" } else { "misses" }
+            )
+        }));
+        row.push(r.verdict.name().to_string());
+        t.row(row);
+    }
+    t.render()
+}
+
+/// Every tolerance of one ladder.
+pub fn ladder_table(r: &ToleranceLadderRecord) -> String {
+    let mut t = Table::new(&[
+        "TOL",
+        "evaluations",
+        "accepted",
+        "rejected",
+        "end",
+        "error",
+        "round-off bound",
+        "fitted",
+    ]);
+    for p in &r.points {
+        t.row(vec![
+            sci(p.tolerance),
+            p.evaluations.to_string(),
+            p.accepted.to_string(),
+            p.rejected.to_string(),
+            p.end.name().to_string(),
+            opt(p.error, sci),
+            sci(p.round_off),
+            if p.fitted { "yes" } else { "no" }.to_string(),
+        ]);
+    }
+    let mut out = t.render();
+    let _ = writeln!(out, "\n{}: {}.", r.verdict.name(), r.reason);
+    out
+}
+
+/// The wall time of each ladder (machine-dependent).
+pub fn timing_section(records: &AdaptiveRecords) -> String {
+    let mut out = String::from("\n### Adaptive tolerance ladders\n\n");
+    let mut t = Table::new(&["integrator", "scene", "wall time"]);
+    for (r, time) in records.ladders.iter().zip(&records.times) {
+        t.row(vec![
+            r.integrator.to_string(),
+            format!("`{}`", r.scene),
+            format!("{:.1} ms", time.as_secs_f64() * 1e3),
+        ]);
+    }
+    out.push_str(&t.render());
+    out
+}
