@@ -7,6 +7,7 @@ mod catalogue;
 mod cli;
 mod common;
 mod corpus;
+mod double_double;
 mod figures;
 mod geometry;
 mod hard;

@@ -4,6 +4,7 @@
 //! well as doubles can satisfy them, and the first condition beyond the order
 //! clearly violated.
 
+use super::double_double::Dd;
 use nalgebra::SMatrix;
 use stepladder::scheme::{FOREST_RUTH, Flow, SplittingTable, TABLES, VerletComposition, YOSHIDA6};
 
@@ -26,65 +27,6 @@ fn random_matrix(seed: u64) -> Matrix {
         z ^= z >> 31;
         2.0 * (z >> 11) as f64 / (1u64 << 53) as f64 - 1.0
     })
-}
-
-/// A double-double `hi + lo` (about 32 digits). The order conditions are
-/// evaluated in it because in doubles the rounding of the series' many
-/// cancelling terms is far larger than the effect of a coefficient that is a
-/// few units in the last place off, which is what the test must resolve.
-#[derive(Clone, Copy, Debug, Default)]
-struct Dd {
-    hi: f64,
-    lo: f64,
-}
-
-impl Dd {
-    fn of(x: f64) -> Self {
-        Dd { hi: x, lo: 0.0 }
-    }
-
-    /// Knuth's error-free sum, then renormalised.
-    fn add(self, y: Dd) -> Dd {
-        let s = self.hi + y.hi;
-        let b = s - self.hi;
-        let e = (self.hi - (s - b)) + (y.hi - b) + self.lo + y.lo;
-        let hi = s + e;
-        Dd {
-            hi,
-            lo: e - (hi - s),
-        }
-    }
-
-    /// The error-free product through a fused multiply-add.
-    fn mul(self, y: Dd) -> Dd {
-        let p = self.hi * y.hi;
-        let e = self.hi.mul_add(y.hi, -p) + (self.hi * y.lo + self.lo * y.hi);
-        let hi = p + e;
-        Dd {
-            hi,
-            lo: e - (hi - p),
-        }
-    }
-
-    fn neg(self) -> Dd {
-        Dd {
-            hi: -self.hi,
-            lo: -self.lo,
-        }
-    }
-
-    /// `1 / n` to double-double accuracy.
-    fn recip(n: f64) -> Dd {
-        let hi = 1.0 / n;
-        Dd {
-            hi,
-            lo: -n.mul_add(hi, -1.0) / n,
-        }
-    }
-
-    fn to_f64(self) -> f64 {
-        self.hi + self.lo
-    }
 }
 
 type DdMatrix = [[Dd; N]; N];
