@@ -2,6 +2,7 @@
 //! table) plus one line here; every test, study and report loops over it.
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
+use super::nystrom_splitting::{MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5};
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
@@ -43,6 +44,9 @@ catalogue![
     PEFRL,
     YOSHIDA6,
     KAHAN_LI8,
+    MCLACHLAN_ATELA4,
+    MCLACHLAN_SB3A4,
+    MCLACHLAN_SB3A5,
 ];
 
 /// Every scheme id, in catalogue order.
@@ -60,4 +64,7 @@ pub const TABLES: &[&SplittingTable] = &[
     &FOREST_RUTH,
     &YOSHIDA6,
     &KAHAN_LI8,
+    &MCLACHLAN_ATELA4,
+    &MCLACHLAN_SB3A4,
+    &MCLACHLAN_SB3A5,
 ];

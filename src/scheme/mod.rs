@@ -12,6 +12,7 @@ pub mod compensated;
 mod composition;
 mod euler;
 mod implicit;
+mod nystrom_splitting;
 mod runge_kutta;
 mod single_precision;
 mod splitting;
@@ -26,6 +27,7 @@ pub use compensated::{
 pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
 pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
+pub use nystrom_splitting::{MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5};
 pub use runge_kutta::Rk4;
 pub use single_precision::{SingleCarry, SinglePrecision};
 pub use splitting::{EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};

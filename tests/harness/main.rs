@@ -12,6 +12,7 @@ mod figures;
 mod geometry;
 mod hard;
 mod implicit;
+mod nystrom_conditions;
 mod order;
 mod order_conditions;
 mod pins;
