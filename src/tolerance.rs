@@ -263,7 +263,16 @@ pub const SCENE_TOLERANCE: f64 = 1e-8;
 /// `z` up to 20, at most 1 eps for the Verlet family, 7 for Forest-Ruth
 /// (3 evaluations), 42 for PEFRL (4), 49 for Yoshida's sixth order (7) and
 /// 105 for Kahan-Li's eighth order (17), so 32 a stage leaves a margin of 3
-/// or more. Past a boundary the determinant or trace leaves its bound at a
+/// or more. For the determinant the slack is per unit of
+/// `|m11 m22| + |m12 m21|` (at least 1): it is the difference of those
+/// products, and its round-off grows with them; the trace condition then
+/// takes a determinant above 1 as 1, so that a large map's round-off cannot
+/// pass an unstable trace. McLachlan and Atela's fourth-order map at `z = 9.5672`
+/// has entries up to 5.8e3, each product near 3.0e5, and in doubles its
+/// determinant comes out `1 - 5.8e-11`, its trace `-1.62581065715642` (40
+/// digits give `det = 1`, trace `-1.62581065715648`: stable), which a slack
+/// in units of eps alone (2.8e-14 there) calls unstable. Past a boundary the
+/// determinant or trace leaves its bound at a
 /// finite rate, so the slack moves a boundary by about 1e-13, far below the
 /// bisection's resolution; explicit Euler (`det = 1 + z^2`) would pass only
 /// below `z = 8.4e-8`, under the scan's first point.

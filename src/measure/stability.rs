@@ -57,7 +57,9 @@ pub fn spectral_radius(m: &Matrix2<f64>) -> f64 {
 /// `det <= 1` and `|tr| <= 1 + det` (Jury's conditions). Unlike the spectral
 /// radius, these need no square root, which near a double eigenvalue would
 /// turn round-off of `1e-16` into `1e-8`; the slack covers the round-off of
-/// the map's entries (see [`STABILITY_SLACK_EPS_PER_EVALUATION`]).
+/// the map's entries (see [`STABILITY_SLACK_EPS_PER_EVALUATION`]); for the
+/// determinant, in proportion to the size of its two products, whose
+/// difference is 1 for an area-preserving map however large the entries.
 pub fn is_stable<M: Scheme>(scheme: &M, z: f64) -> bool {
     if let Some(polynomial) = scheme.recurrence_on_oscillator(z) {
         return roots_bounded(&polynomial_roots(&polynomial));
@@ -67,7 +69,10 @@ pub fn is_stable<M: Scheme>(scheme: &M, z: f64) -> bool {
         * scheme.meta().force_evaluations.max(1) as f64;
     one_step_matrix(scheme, z).is_some_and(|m| {
         let (trace, det) = (m.trace(), m.determinant());
-        det <= 1.0 + slack && trace.abs() <= 1.0 + det + slack
+        let products = (m[(0, 0)] * m[(1, 1)]).abs() + (m[(0, 1)] * m[(1, 0)]).abs();
+        // a determinant above 1 by no more than its round-off is 1: it must
+        // not widen the trace condition, which stays in units of eps
+        det <= 1.0 + slack * products.max(1.0) && trace.abs() <= 1.0 + det.min(1.0) + slack
     })
 }
 

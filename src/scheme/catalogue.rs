@@ -4,6 +4,7 @@
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
 use super::multistep::QUINLAN_TREMAINE8;
 use super::nystrom_rk::{DPRKN6, NYSTROM4};
+use super::nystrom_splitting::{MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5};
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
@@ -45,9 +46,12 @@ catalogue![
     PEFRL,
     YOSHIDA6,
     KAHAN_LI8,
-    QUINLAN_TREMAINE8,
-    DPRKN6,
+    MCLACHLAN_ATELA4,
+    MCLACHLAN_SB3A4,
+    MCLACHLAN_SB3A5,
     NYSTROM4,
+    DPRKN6,
+    QUINLAN_TREMAINE8,
 ];
 
 /// Every scheme id, in catalogue order.
@@ -65,4 +69,7 @@ pub const TABLES: &[&SplittingTable] = &[
     &FOREST_RUTH,
     &YOSHIDA6,
     &KAHAN_LI8,
+    &MCLACHLAN_ATELA4,
+    &MCLACHLAN_SB3A4,
+    &MCLACHLAN_SB3A5,
 ];

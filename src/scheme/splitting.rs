@@ -36,6 +36,16 @@ pub struct SplittingTable {
     /// them (see [`super::composition::VerletComposition`]); `None` for a
     /// splitting given by its drift and kick weights directly.
     pub composition: Option<&'static [f64]>,
+    /// The weights satisfy the order conditions only for `q'' = a(q)`, not
+    /// for the splitting of any two non-commuting flows. With the kick `B`
+    /// (its field depends on `q` alone) and the drift `A` (its field linear
+    /// in `v`), `[B, [B, [B, A]]] = 0` for every force, which removes order
+    /// conditions; Runge-Kutta-Nystrom splittings spend the freed weights on
+    /// a smaller error. Every scene here is `q'' = a(q)`, so the claimed
+    /// order is the order on every scene; only the algebraic check with
+    /// generic matrices does not apply. Set by
+    /// [`SplittingTable::only_for_nystrom`].
+    pub nystrom_only: bool,
 }
 
 impl SplittingTable {
@@ -61,9 +71,19 @@ impl SplittingTable {
             drift,
             kick,
             composition: None,
+            nystrom_only: false,
         };
         meta.force_evaluations = kick.len() as u32 - table.reuses_acceleration() as u32;
         Self { meta, ..table }
+    }
+
+    /// The same table, marked as having its claimed order only for
+    /// `q'' = a(q)` (see the field `nystrom_only`).
+    pub const fn only_for_nystrom(self) -> Self {
+        Self {
+            nystrom_only: true,
+            ..self
+        }
     }
 
     /// The flows in order of application with their weights.
