@@ -80,9 +80,15 @@ pub fn summary_table(records: &[ToleranceLadderRecord]) -> String {
             Some(p) => row.extend([
                 order(p.exponent),
                 format!("[{}, {}]", order(p.ci95[0]), order(p.ci95[1])),
-                order(p.theory),
+                p.theory.map_or("measured only".into(), order),
             ]),
-            None => row.extend(["-".into(), "-".into(), order(r.claims.proportionality)]),
+            None => row.extend([
+                "-".into(),
+                "-".into(),
+                r.claims
+                    .proportionality
+                    .map_or("measured only".into(), order),
+            ]),
         }
         for tol in SHOWN_TOLERANCES {
             row.push(r.at(tol).map_or("-".into(), |p| {

@@ -186,7 +186,10 @@ fn rest_of_report(records: &SuiteRecords) -> String {
     out.push_str(&earth_sun(&records.earth_sun));
     out.push('\n');
     out.push_str(&hard_cases_section(&records.hard));
-    out.push_str(&work_tables::deterministic_section(&records.work));
+    out.push_str(&work_tables::deterministic_section(
+        &records.work,
+        &records.adaptive.ladders,
+    ));
     out.push_str(&adaptive_tables::adaptive_section(&records.adaptive));
     out.push_str(&round_off_tables::sections(&records.roundoff));
     out.push_str(&appendix(records));

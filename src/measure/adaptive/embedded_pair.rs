@@ -176,7 +176,7 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
         AdaptiveClaims {
             order: p,
             estimate_power: power,
-            proportionality: proportionality_exponent(p, power),
+            proportionality: Some(proportionality_exponent(p, power)),
             symplectic: self.table.meta.symplectic,
             symmetric: self.table.meta.symmetric,
         }

@@ -61,9 +61,10 @@ pub struct AdaptiveClaims {
     /// The power of `h` its error estimate behaves like, asymptotically:
     /// `q + 1` for an estimate from an embedded solution of order `q`.
     pub estimate_power: u32,
-    /// The global error against the tolerance it should show, `~ TOL^k`:
+    /// The global error against the tolerance it should show, `~ TOL^k`
+    /// (`None` where theory predicts no single exponent over the ladder):
     /// see [`crate::measure::adaptive::tolerance_ladder::proportionality_exponent`].
-    pub proportionality: f64,
+    pub proportionality: Option<f64>,
     /// The method is symplectic (no adaptive pair here is).
     pub symplectic: bool,
     /// The method is time-symmetric (no adaptive pair here is).
