@@ -361,9 +361,9 @@ pub fn work_study(
             .collect();
         debug_assert!(schemes.iter().zip(&ids).all(|(w, id)| w.scheme == *id));
         let (peer_work, peer_times) = peer.unzip();
-        let t_end = r
-            .first()
-            .map_or_else(|| scene.visit(DefaultEnd), |o| o.t_end);
+        // the work points are over the scene's default t_end, whatever the
+        // order study settled on (see `scheme_work`)
+        let t_end = scene.visit(DefaultEnd);
         let rec = record(scene, t_end, schemes, peer_work);
         timings.push(timing(
             &rec,

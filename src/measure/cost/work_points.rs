@@ -221,6 +221,7 @@ pub fn beyond_the_floor<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     scheme: &M,
     scene: &S,
     record: &OrderRecord,
+    t_end: f64,
     finest: &WorkPoint,
 ) -> Vec<WorkPoint> {
     let smallest = TARGETS.iter().copied().fold(f64::INFINITY, f64::min);
@@ -238,31 +239,43 @@ pub fn beyond_the_floor<M: Scheme, S: Scene<D> + Clone, const D: usize>(
         if per_step * steps as f64 > crate::ladder::AUTO_MAX_RUNG_EVALUATIONS as f64 {
             break;
         }
-        let Some(error) =
-            crate::measure::accuracy::order::exact_rung_error(scheme, scene, record.t_end, steps)
-        else {
+        let Some(point) = exact_point(scheme, scene, t_end, steps) else {
             break;
         };
-        let h = record.t_end / steps as f64;
-        let evaluations = if scheme.meta().implicit {
-            let counted = Counted::new(scene.clone());
-            let _ = integrate(scheme, &counted, &counted.initial(), h, steps, |_, _, _| {});
-            counted.evaluations()
-        } else {
-            start_evaluations(scheme, scene, h) + steps * scheme.meta().force_evaluations as u64
-        };
-        points.push(WorkPoint {
-            h,
-            steps,
-            evaluations,
-            error: Some(error),
-        });
+        let error = point.error.unwrap_or(f64::INFINITY);
+        points.push(point);
         if error > previous / (1.0 + 0.1 * (promised - 1.0)) {
             break;
         }
         previous = error;
     }
     points
+}
+
+/// One rung measured afresh over `t_end` against the exact solution, with
+/// its force evaluations; `None` without an exact solution.
+fn exact_point<M: Scheme, S: Scene<D> + Clone, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    t_end: f64,
+    steps: u64,
+) -> Option<WorkPoint> {
+    scene.exact(0.0)?;
+    let error = crate::measure::accuracy::order::exact_rung_error(scheme, scene, t_end, steps);
+    let h = t_end / steps as f64;
+    let evaluations = if scheme.meta().implicit {
+        let counted = Counted::new(scene.clone());
+        let _ = integrate(scheme, &counted, &counted.initial(), h, steps, |_, _, _| {});
+        counted.evaluations()
+    } else {
+        start_evaluations(scheme, scene, h) + steps * scheme.meta().force_evaluations as u64
+    };
+    Some(WorkPoint {
+        h,
+        steps,
+        evaluations,
+        error,
+    })
 }
 
 /// The order study's rungs as work points: the steps and errors of `record`
@@ -396,9 +409,23 @@ pub fn scheme_work<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     scene: &S,
     record: &OrderRecord,
 ) -> SchemeWork {
-    let mut global = global_points(scheme, scene, record);
+    // every scheme is raced over the same time: where the order study had
+    // to shorten its runs to decide, its steps are run again over the
+    // scene's default t_end
+    let t_end = scene.default_t_end();
+    let mut global = if (record.t_end - t_end).abs() <= 1e-12 * t_end {
+        global_points(scheme, scene, record)
+    } else {
+        record
+            .rungs
+            .iter()
+            .filter_map(|r| {
+                exact_point(scheme, scene, t_end, (t_end / r.h).round().max(1.0) as u64)
+            })
+            .collect()
+    };
     if let Some(finest) = global.iter().rev().find(|p| p.error.is_some()).copied() {
-        global.extend(beyond_the_floor(scheme, scene, record, &finest));
+        global.extend(beyond_the_floor(scheme, scene, record, t_end, &finest));
     }
     let energy = energy_points(scheme, scene);
     let evaluations = |p: &WorkPoint| p.evaluations as f64;
