@@ -229,6 +229,10 @@ impl WindowChoice {
     }
 }
 
+/// The highest power of `h` whose settling lets a window reach back past
+/// its plateau (see [`select_window`]).
+pub const MAX_SETTLING_POWER: i32 = 4;
+
 /// Chooses the asymptotic window from the data (coarse to fine), from the
 /// data alone, never from the order the scheme claims:
 ///
@@ -311,10 +315,13 @@ pub fn select_window(data: &[RungData], scale: f64) -> WindowChoice {
         first -= 1;
     }
     // Too short to decide, the window may still reach back along a settling
-    // next term. A term `b h^q` (q >= 1) of the error expansion moves the
-    // local order by about `q b h^q`: the local orders approach their limit
-    // geometrically, each difference of neighbours at most the step ratio
-    // `h_(i+1)/h_i` times the coarser difference. A curved error drifting
+    // next term. A term `b h^q` of the error expansion moves the local order
+    // by about `q b h^q`: the local orders approach their limit
+    // geometrically, each difference of neighbours `r^q` times the coarser
+    // one (`r = h_(i+1)/h_i`), with `q` from 1 (a general method) to
+    // [`MAX_SETTLING_POWER`] (the expansions here go in h or h^2, a symmetric
+    // method's in h^2 and h^4). A larger drop is a jump out of a
+    // pre-asymptotic bump onto the plateau, not a term settling. A curved error drifting
     // through the plateau changes its local order by equal differences per
     // rung (or sweeps back through a cancellation), which this rejects; so is
     // a step away from the plateau. Rungs join only while the window needs
@@ -327,7 +334,7 @@ pub fn select_window(data: &[RungData], scale: f64) -> WindowChoice {
         let settling = (local(first) - median).abs() > tolerance
             && step * (median - local(first)) > 0.0
             && step * next > 0.0
-            && next.abs() <= step.abs() * shrink;
+            && (shrink.powi(MAX_SETTLING_POWER)..=shrink).contains(&(next / step));
         if !settling {
             break;
         }
