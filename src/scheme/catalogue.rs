@@ -2,7 +2,6 @@
 //! table) plus one line here; every test, study and report loops over it.
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
-use super::multistep::QUINLAN_TREMAINE8;
 use super::nystrom_rk::{DPRKN6, NYSTROM4};
 use super::nystrom_splitting::{MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5};
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
@@ -51,7 +50,6 @@ catalogue![
     MCLACHLAN_SB3A5,
     NYSTROM4,
     DPRKN6,
-    QUINLAN_TREMAINE8,
 ];
 
 /// Every scheme id, in catalogue order.

@@ -35,6 +35,14 @@
 //! restarts from a synchronised state, which builds a new window, so as a
 //! map of `(q, v)` the scheme is neither symmetric nor symplectic, and it
 //! claims neither.
+//!
+//! Not in the catalogue (yet): on the circular orbit, the oscillator and the
+//! anharmonic well its order is measured (8.05, 8.00, 8.07), but on the
+//! eccentric orbit the steps between the resonances of the pericentre
+//! passage and the round-off floor span only one and a half halvings, too
+//! few for the order study to decide, and the separatrix study finds too
+//! few runs between round-off and its offset ceiling; the harness promises a
+//! verdict on every built-in scene for every catalogue scheme.
 
 use super::composition::KAHAN_LI8;
 use super::{PhaseError, Scheme, SchemeMeta, StepFailure};
