@@ -35,11 +35,12 @@ fn method() -> String {
          spent (rejected steps and the first step's guess included). An error-per-step \
          controller whose estimate behaves like `h^m`, advancing with an order-`p` \
          solution, settles at steps `h ~ TOL^(1/m)` and a global error `~ TOL^(p/m)` \
-         (Hairer, Nørsett, Wanner I, II.4): `6/5` for DPRKN6(4) (`m = q + 1 = 5`), `1` for \
-         DOP853, whose combined estimate behaves like `h^8`. The exponent is a straight \
-         line through `(ln TOL, ln error)` with its Student's t interval widened by how far \
-         the slope moves when one or two end points are dropped, over the points that \
-         reached `t_end` with an error below {ERROR_CEILING} and at least {} times the \
+         (Hairer, Nørsett, Wanner I, II.4): `6/5` for DPRKN6(4) (`m = q + 1 = 5`). DOP853's \
+         estimate `h err5^2 / sqrt(err5^2 + 0.01 err3^2)` behaves like `h^6` while its \
+         fifth-order part dominates and like `h^8` once the third-order one does, so its \
+         exponent moves from 4/3 towards 1 along the ladder and is measured, not judged. \
+         The exponent is fitted as the order study fits an order, in `x = TOL^(1/m)`, with \
+         the fit's interval over `m`, over the points that reached `t_end` with an error below {ERROR_CEILING} and at least {} times the \
          round-off bound `8 eps N scale` (at least {MIN_FIT_POINTS} points). At `TOL = \
          {}` an energy run of {ENERGY_PERIODS} periods is classified by the growth of \
          `|E - E(T)|` over its last two decades, and a round trip (to `t_end`, velocities \
