@@ -159,7 +159,9 @@ pub(super) fn separatrix(a: &SeparatrixArgs) -> Result<ExitCode, Error> {
             print!("{}", report::following_rungs(r));
         }
     }
-    Ok(exit_for(hard.following.iter().all(|r| r.consistent)))
+    Ok(exit_for(
+        hard.following.iter().all(|r| r.consistent != Some(false)),
+    ))
 }
 
 #[derive(Serialize)]

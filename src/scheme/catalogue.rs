@@ -3,7 +3,9 @@
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
 use super::nystrom_rk::{DPRKN6, NYSTROM4};
-use super::nystrom_splitting::{MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5};
+use super::nystrom_splitting::{
+    BLANES_MOAN_SRKN11, MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5,
+};
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;
@@ -48,6 +50,7 @@ catalogue![
     MCLACHLAN_ATELA4,
     MCLACHLAN_SB3A4,
     MCLACHLAN_SB3A5,
+    BLANES_MOAN_SRKN11,
     NYSTROM4,
     DPRKN6,
 ];
@@ -70,4 +73,5 @@ pub const TABLES: &[&SplittingTable] = &[
     &MCLACHLAN_ATELA4,
     &MCLACHLAN_SB3A4,
     &MCLACHLAN_SB3A5,
+    &BLANES_MOAN_SRKN11,
 ];

@@ -31,7 +31,9 @@ pub use euler::Euler;
 pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
 pub use multistep::{MultistepCarry, QUINLAN_TREMAINE8, SymmetricMultistep};
 pub use nystrom_rk::{DPRKN6, Embedded, NYSTROM4, NystromStep, NystromTable};
-pub use nystrom_splitting::{MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5};
+pub use nystrom_splitting::{
+    BLANES_MOAN_SRKN11, MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5,
+};
 pub use runge_kutta::Rk4;
 pub use single_precision::{SingleCarry, SinglePrecision};
 pub use splitting::{EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};

@@ -161,3 +161,81 @@ mod sb3a5 {
     pub const B2: f64 = 0.288135593220339;
     pub const B3: f64 = 0.5059205943812398;
 }
+
+/// Blanes and Moan's sixth-order symmetric Runge-Kutta-Nystrom splitting
+/// `SRKN_11^b`: twelve kicks and eleven drifts, kick first,
+/// `K(b1) D(a1) ... K(b6) D(a6) K(b6) ... D(a1) K(b1)`; the last kick and the
+/// next step's first share one force evaluation, so eleven per step.
+///
+/// Sixth order only for `q'' = a(q)`: of the conditions of a generic
+/// symmetric splitting at `h^5`, two belong to brackets that vanish here,
+/// and the weights they would have fixed go into the `h^7` error terms:
+/// measured, it reaches a global error of 1e-9 with 2.3 (circular orbit) to
+/// 3.8 (oscillator) times fewer force evaluations than Yoshida's sixth
+/// order, an error constant 150 to 3000 times smaller at equal cost per
+/// step. The published 15 digits satisfy the order
+/// conditions to 8e-18; the weights below are the doubles nearest to the
+/// exact solution nearest to them (they move by at most 6e-16).
+pub const BLANES_MOAN_SRKN11: SplittingTable = SplittingTable::new(
+    SchemeMeta {
+        id: "blanes-moan-srkn11b",
+        name: "Blanes-Moan SRKN_11^b, sixth order (Runge-Kutta-Nystrom)",
+        order: 6,
+        symplectic: true,
+        symmetric: true,
+        reference: "S. Blanes, P. C. Moan, J. Comput. Appl. Math. 142, 313 (2002), Table 3, SRKN_11^b",
+        phase_error: None,    // measured only: no hand-derived leading term
+        force_evaluations: 0, // derived by `new`
+        implicit: false,
+    },
+    Flow::Kick,
+    &[
+        srkn11b::A1,
+        srkn11b::A2,
+        srkn11b::A3,
+        srkn11b::A4,
+        srkn11b::A5,
+        srkn11b::A6,
+        srkn11b::A5,
+        srkn11b::A4,
+        srkn11b::A3,
+        srkn11b::A2,
+        srkn11b::A1,
+    ],
+    &[
+        srkn11b::B1,
+        srkn11b::B2,
+        srkn11b::B3,
+        srkn11b::B4,
+        srkn11b::B5,
+        srkn11b::B6,
+        srkn11b::B6,
+        srkn11b::B5,
+        srkn11b::B4,
+        srkn11b::B3,
+        srkn11b::B2,
+        srkn11b::B1,
+    ],
+)
+.only_for_nystrom();
+
+/// Published `b1 = 0.0414649985182624`, `b2 = 0.198128671918067`,
+/// `b3 = -0.0400061921041533`, `b4 = 0.0752539843015807`,
+/// `b5 = -0.0115113874206879`, `b6 = 1/2 - (b1 + ... + b5)`,
+/// `a1 = 0.123229775946271`, `a2 = 0.290553797799558`,
+/// `a3 = -0.127049212625417`, `a4 = -0.246331761062075`,
+/// `a5 = 0.357208872795928`, `a6 = 1 - 2 (a1 + ... + a5)`.
+mod srkn11b {
+    pub const A1: f64 = 0.12322977594627116;
+    pub const A2: f64 = 0.29055379779955826;
+    pub const A3: f64 = -0.1270492126254169;
+    pub const A4: f64 = -0.2463317610620754;
+    pub const A5: f64 = 0.3572088727959278;
+    pub const A6: f64 = 0.20477705429147028;
+    pub const B1: f64 = 0.041464998518262845;
+    pub const B2: f64 = 0.19812867191806655;
+    pub const B3: f64 = -0.04000619210415269;
+    pub const B4: f64 = 0.07525398430158034;
+    pub const B5: f64 = -0.01151138742068777;
+    pub const B6: f64 = 0.23666992478693072;
+}
