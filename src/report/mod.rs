@@ -48,7 +48,10 @@ pub fn render(records: &SuiteRecords) -> String {
         &records.speed,
         &records.work_timing,
     ));
-    out.push_str(&adaptive_tables::timing_section(&records.adaptive));
+    out.push_str(&adaptive_tables::timing_section(
+        &records.adaptive,
+        &records.work_timing,
+    ));
     out
 }
 

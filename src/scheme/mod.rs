@@ -30,7 +30,7 @@ pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
 pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
 pub use multistep::{MultistepCarry, QUINLAN_TREMAINE8, SymmetricMultistep};
-pub use nystrom_rk::{DPRKN6, Embedded, NYSTROM4, NystromStep, NystromTable};
+pub use nystrom_rk::{DPRKN6, DPRKN8, Embedded, NYSTROM4, NystromStep, NystromTable};
 pub use nystrom_splitting::{
     BLANES_MOAN_SRKN11, MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5,
 };

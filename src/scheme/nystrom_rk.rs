@@ -312,6 +312,157 @@ pub const DPRKN6: NystromTable<6> = {
     )
 };
 
+/// `n / d` correctly rounded (both are exact doubles below 2^53).
+const fn ratio(n: i64, d: i64) -> f64 {
+    n as f64 / d as f64
+}
+
+/// Dormand, El-Mikkawy and Prince's eighth-order Nyström method with an
+/// embedded sixth-order solution: nine stages, the last at the new position
+/// (first same as last), so eight force evaluations per step. The stage
+/// nodes `c = 0, 1/20, 1/10, 3/10, 1/2, 7/10, 9/10, 1, 1`.
+///
+/// Every coefficient is a published rational, rounded once. Checked here by
+/// the quadrature conditions and by the local error on a nonlinear orbit;
+/// `tests/check_nystrom_rk_orders.py` checks the rationals exactly against
+/// every Nyström order condition (the main solution's local error vanishes
+/// through `h^8`, the embedded one's through `h^6`).
+pub const DPRKN8: NystromTable<9> = {
+    let bb = [
+        ratio(223, 7938),
+        0.0,
+        ratio(1175, 8064),
+        ratio(925, 6048),
+        ratio(41, 448),
+        ratio(925, 14112),
+        ratio(1175, 72576),
+        0.0,
+        0.0,
+    ];
+    NystromTable::new(
+        SchemeMeta {
+            id: "rkn8-dormand-el-mikkawy-prince",
+            name: "Dormand-El-Mikkawy-Prince RKN8(6), 9 stages (Runge-Kutta-Nystrom, FSAL, fixed step)",
+            order: 8,
+            symplectic: false,
+            symmetric: false,
+            force_evaluations: 0, // derived by `new`
+            implicit: false,
+            reference: "J. R. Dormand, M. E. A. El-Mikkawy, P. J. Prince, High-order embedded Runge-Kutta-Nystrom formulae, IMA J. Numer. Anal. 7, 423 (1987)",
+            phase_error: None,
+        },
+        [0.0, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0, 1.0],
+        [
+            [0.0; 9],
+            [ratio(1, 800), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            [
+                ratio(1, 600),
+                ratio(1, 300),
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ],
+            [
+                ratio(9, 200),
+                ratio(-9, 100),
+                ratio(9, 100),
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ],
+            [
+                ratio(-66_701, 197_352),
+                ratio(28_325, 32_892),
+                ratio(-2665, 5482),
+                ratio(2170, 24_669),
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ],
+            [
+                ratio(227_015_747, 304_251_000),
+                ratio(-54_897_451, 30_425_100),
+                ratio(12_942_349, 10_141_700),
+                ratio(-9499, 304_251),
+                ratio(539, 9250),
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ],
+            [
+                ratio(-1_131_891_597, 901_789_000),
+                ratio(41_964_921, 12_882_700),
+                ratio(-6_663_147, 3_220_675),
+                ratio(270_954, 644_135),
+                ratio(-108, 5875),
+                ratio(114, 1645),
+                0.0,
+                0.0,
+                0.0,
+            ],
+            [
+                ratio(13_836_959, 3_667_458),
+                ratio(-17_731_450, 1_833_729),
+                ratio(1_063_919_505, 156_478_208),
+                ratio(-33_213_845, 39_119_552),
+                ratio(13_335, 28_544),
+                ratio(-705, 14_272),
+                ratio(1645, 57_088),
+                0.0,
+                0.0,
+            ],
+            bb,
+        ],
+        bb,
+        [
+            ratio(223, 7938),
+            0.0,
+            ratio(5875, 36_288),
+            ratio(4625, 21_168),
+            ratio(41, 224),
+            ratio(4625, 21_168),
+            ratio(5875, 36_288),
+            ratio(223, 7938),
+            0.0,
+        ],
+        Some(Embedded {
+            order: 6,
+            b_bar: [
+                ratio(7_987_313, 109_941_300),
+                0.0,
+                ratio(1_610_737, 44_674_560),
+                ratio(10_023_263, 33_505_920),
+                ratio(-497_221, 12_409_600),
+                ratio(10_023_263, 78_180_480),
+                ratio(1_610_737, 402_071_040),
+                0.0,
+                0.0,
+            ],
+            b: [
+                ratio(7_987_313, 109_941_300),
+                0.0,
+                ratio(1_610_737, 40_207_104),
+                ratio(10_023_263, 23_454_144),
+                ratio(-497_221, 6_204_800),
+                ratio(10_023_263, 23_454_144),
+                ratio(1_610_737, 40_207_104),
+                ratio(-4_251_941, 54_970_650),
+                0.15,
+            ],
+        }),
+    )
+};
+
 /// Nyström's classical fourth-order method: three stages at `c = (0, 1/2,
 /// 1)`, three force evaluations per step (RK4 on `(q, v)` needs four), no
 /// embedded solution.
@@ -426,6 +577,56 @@ mod tests {
             "{nys:?}"
         );
         assert!(nys.iter().any(|x| x.1 == 5 && x.2.abs() > 1e-3), "{nys:?}");
+    }
+
+    /// DPRKN8's quadrature conditions to order eight (positions to seven),
+    /// its rows summing to `c^2/2`, the tree conditions up to order five,
+    /// and its local error on the Kepler orbit falling like `h^9` (halving
+    /// `h` divides it by 512), its estimate's like `h^7` (by 128). The full
+    /// set of trees is checked in exact rationals by
+    /// `tests/check_nystrom_rk_orders.py`.
+    #[test]
+    fn dprkn8_has_order_eight_and_its_estimate_order_six() {
+        let t = &DPRKN8;
+        for i in 0..9 {
+            let row: f64 = t.a[i].iter().sum();
+            assert!((row - t.c[i].powi(2) / 2.0).abs() < 4e-16, "row {i}: {row}");
+        }
+        for k in 0..8 {
+            let d: f64 =
+                (0..9).map(|i| t.b[i] * t.c[i].powi(k)).sum::<f64>() - 1.0 / (k + 1) as f64;
+            assert!(d.abs() < 1e-15, "b c^{k}: {d}");
+        }
+        for k in 0..7 {
+            let d: f64 = (0..9).map(|i| t.b_bar[i] * t.c[i].powi(k)).sum::<f64>()
+                - 1.0 / ((k + 1) * (k + 2)) as f64;
+            assert!(d.abs() < 1e-15, "b_bar c^{k}: {d}");
+        }
+        for (name, order, d) in defects(&t.c, &t.a, &t.b_bar, &t.b, 5) {
+            assert!(d.abs() < 1e-14, "{name} (order {order}): {d}");
+        }
+        assert!(t.first_same_as_last());
+        assert_eq!(t.meta.force_evaluations, 8);
+        let scene = KeplerCircular;
+        let s = scene.initial();
+        let a0 = scene.acceleration(&s.q);
+        let local = |h: f64| {
+            let x = t.attempt(&scene, &s, a0, h).state;
+            scene.phase_distance(&x, &scene.exact(h).unwrap())
+        };
+        let estimate = |h: f64| {
+            let e = t.attempt(&scene, &s, a0, h).error;
+            (e.q.norm_squared() + e.v.norm_squared()).sqrt()
+        };
+        for h in [0.08, 0.04] {
+            let r = local(h) / local(h / 2.0);
+            assert!((r / 512.0 - 1.0).abs() < 0.15, "h = {h}: local ratio {r}");
+            let r = estimate(h) / estimate(h / 2.0);
+            assert!(
+                (r / 128.0 - 1.0).abs() < 0.15,
+                "h = {h}: estimate ratio {r}"
+            );
+        }
     }
 
     #[test]

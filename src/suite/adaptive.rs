@@ -1,28 +1,31 @@
 //! The tolerance ladder of every adaptive integrator on every built-in
-//! scene: the catalogue's own DPRKN6(4) pair and the `ode_solvers` peer,
-//! through the same [`AdaptiveIntegrator`] trait.
+//! scene: the crate's own DPRKN6(4) and DPRKN8(6) pairs and the
+//! `ode_solvers` peer, through the same [`AdaptiveIntegrator`] trait.
 
 use crate::error::Error;
 use crate::measure::adaptive::{
-    AdaptiveIntegrator, DPRKN6_ADAPTIVE, ToleranceLadderRecord, ToleranceLadderSpec,
-    tolerance_ladder,
+    AdaptiveIntegrator, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, ToleranceLadderRecord,
+    ToleranceLadderSpec, tolerance_ladder,
 };
 use crate::measure::cost::peer::Dop853Peer;
 use crate::parallel::parallel_map;
 use crate::scene::{AnyScene, Scene, SceneVisitor};
+use crate::suite::work_precision::PEER_REPEATS;
 use std::time::{Duration, Instant};
 
 /// Which adaptive integrator a job runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Adaptive {
     /// [`DPRKN6_ADAPTIVE`].
-    OwnPair,
+    OwnPair6,
+    /// [`DPRKN8_ADAPTIVE`].
+    OwnPair8,
     /// [`Dop853Peer`].
     Peer,
 }
 
 /// The integrators of the study, in table order.
-pub const INTEGRATORS: [Adaptive; 2] = [Adaptive::OwnPair, Adaptive::Peer];
+pub const INTEGRATORS: [Adaptive; 3] = [Adaptive::OwnPair6, Adaptive::OwnPair8, Adaptive::Peer];
 
 /// The tolerance ladders, one per integrator and scene (integrator-major),
 /// and the wall time they took (machine-dependent).
@@ -32,6 +35,46 @@ pub struct AdaptiveRecords {
     pub ladders: Vec<ToleranceLadderRecord>,
     /// Wall time of each ladder, in the same order.
     pub times: Vec<Duration>,
+    /// For the crate's own pairs, the seconds of each tolerance's run to
+    /// `t_end` (the fastest of [`PEER_REPEATS`], timed one at a time after
+    /// the ladders, as the peer's runs are); empty for the peer, whose runs
+    /// the work study times.
+    pub point_seconds: Vec<Vec<f64>>,
+}
+
+/// The fastest of `repeats` runs of `integrator` at each tolerance.
+struct TimeRuns<'a, I>(&'a I, &'a ToleranceLadderRecord);
+impl<I: AdaptiveIntegrator> SceneVisitor for TimeRuns<'_, I> {
+    type Output = Vec<f64>;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        scene: &S,
+    ) -> Self::Output {
+        let TimeRuns(integrator, ladder) = self;
+        ladder
+            .points
+            .iter()
+            .map(|p| {
+                (0..PEER_REPEATS)
+                    .filter_map(|_| integrator.run(scene, ladder.t_end, p.tolerance).ok())
+                    .map(|run| run.time.as_secs_f64())
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect()
+    }
+}
+
+/// Times the runs of an own pair's ladder (empty for the peer).
+fn point_seconds(
+    integrator: Adaptive,
+    scene: &AnyScene,
+    ladder: &ToleranceLadderRecord,
+) -> Vec<f64> {
+    match integrator {
+        Adaptive::OwnPair6 => scene.visit(TimeRuns(&DPRKN6_ADAPTIVE, ladder)),
+        Adaptive::OwnPair8 => scene.visit(TimeRuns(&DPRKN8_ADAPTIVE, ladder)),
+        Adaptive::Peer => Vec::new(),
+    }
 }
 
 struct LadderOn<'a, I>(&'a I, &'a ToleranceLadderSpec);
@@ -52,7 +95,8 @@ pub fn ladder_of(
     spec: &ToleranceLadderSpec,
 ) -> Result<ToleranceLadderRecord, Error> {
     match integrator {
-        Adaptive::OwnPair => scene.visit(LadderOn(&DPRKN6_ADAPTIVE, spec)),
+        Adaptive::OwnPair6 => scene.visit(LadderOn(&DPRKN6_ADAPTIVE, spec)),
+        Adaptive::OwnPair8 => scene.visit(LadderOn(&DPRKN8_ADAPTIVE, spec)),
         Adaptive::Peer => scene.visit(LadderOn(&Dop853Peer, spec)),
     }
 }
@@ -77,9 +121,11 @@ pub fn adaptive_study(threads: usize) -> Result<AdaptiveRecords, Error> {
     let mut records = AdaptiveRecords {
         ladders: Vec::with_capacity(done.len()),
         times: Vec::with_capacity(done.len()),
+        point_seconds: Vec::with_capacity(done.len()),
     };
-    for d in done {
+    for (d, (i, s)) in done.into_iter().zip(jobs) {
         let (r, t) = d?;
+        records.point_seconds.push(point_seconds(i, s, &r));
         records.ladders.push(r);
         records.times.push(t);
     }

@@ -93,6 +93,21 @@ pub trait AdaptiveIntegrator: Sync {
         tol: f64,
     ) -> Result<AdaptiveRun<D>, Error>;
 
+    /// The worst global error, against the scene's exact solution, of the
+    /// method this integrator advances with, run at the fixed step `t_end /
+    /// steps` from the initial state: `None` where it has no fixed-step
+    /// form or the scene no exact solution. The tolerance ladder uses it to
+    /// tell a method not yet at its asymptotic order at the ladder's steps
+    /// from a controller that misses its claim.
+    fn fixed_step_error<S: Scene<D>, const D: usize>(
+        &self,
+        _scene: &S,
+        _t_end: f64,
+        _steps: u64,
+    ) -> Option<f64> {
+        None
+    }
+
     /// [`AdaptiveIntegrator::integrate`] from the scene's initial state.
     fn run<S: Scene<D>, const D: usize>(
         &self,

@@ -13,7 +13,7 @@ pub mod embedded_pair;
 pub mod integrator;
 pub mod tolerance_ladder;
 
-pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, EmbeddedPair};
+pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
 pub use integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
 pub use tolerance_ladder::{
     ToleranceLadderRecord, ToleranceLadderSpec, TolerancePoint, proportionality_exponent,
