@@ -282,7 +282,11 @@ pub fn deterministic_section(records: &[WorkRecord], adaptive: &[ToleranceLadder
          time is the Kepler rows of the time-to-target table in the machine-dependent part). \
          A fixed step pays everywhere for the orbit's fastest part, an adaptive one only \
          there: where a fixed-step scheme loses on the eccentric orbit, the outcome says \
-         what the eccentricity costs each side.\n\n",
+         what the eccentricity costs each side. Where DPRKN8(6) wins, the reason is the \
+         equation: for `q'' = a(q)` a Nyström method spends no stages on the velocity's \
+         own derivative, so it reaches order eight with eight force evaluations a step, \
+         where DOP853, written for any first-order system and run on `(q, v)`, spends \
+         twelve.\n\n",
     );
     out.push_str(&race_table(records, adaptive));
     out.push_str("\n### Cheapest scheme per target\n\n");
