@@ -191,6 +191,7 @@ pub fn timing_section(records: &AdaptiveRecords, work: &[WorkTiming]) -> String 
                     let points: Vec<(f64, Option<f64>)> = s
                         .iter()
                         .zip(&l.points)
+                        .filter(|(t, _)| t.is_finite())
                         .map(|(&t, p)| (t, p.error))
                         .collect();
                     let reach = cost_to_reach(&points, target);

@@ -235,7 +235,9 @@ pub fn race_table(records: &[WorkRecord], adaptive: &[ToleranceLadderRecord]) ->
             };
             let outcome = match (best, c.peer.cost()) {
                 (Some(_), None) => "won: the peer does not reach it".to_string(),
-                (None, _) => "lost: no catalogue scheme reaches it".to_string(),
+                (None, _) => {
+                    "lost: neither a catalogue scheme nor an own pair reaches it".to_string()
+                }
                 (Some(a), Some(b)) if a <= b => "won".to_string(),
                 (Some(a), Some(b)) => {
                     let circular = find(RACE_SCENES[0], target)
@@ -279,7 +281,7 @@ pub fn deterministic_section(records: &[WorkRecord], adaptive: &[ToleranceLadder
         "### The race on the Kepler orbits\n\nThe cheapest fixed-step catalogue scheme and \
          the cheapest of the crate's own adaptive pairs (see the tolerance ladders) against the adaptive \
          peer at equal global error, by force evaluations (the same race by wall \
-         time is the Kepler rows of the time-to-target table in the machine-dependent part). \
+         time is the race-by-time table in the machine-dependent part). \
          A fixed step pays everywhere for the orbit's fastest part, an adaptive one only \
          there: where a fixed-step scheme loses on the eccentric orbit, the outcome says \
          what the eccentricity costs each side. Where DPRKN8(6) wins, the reason is the \

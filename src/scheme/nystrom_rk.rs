@@ -8,8 +8,8 @@
 //! far fewer than for a Runge-Kutta method on `(q, v)`, so fewer stages buy
 //! the same order (three for order four, five for order six). None of these
 //! methods is symplectic or symmetric: they are the non-geometric baseline
-//! of the high orders, and the DPRKN6(4) pair carries an embedded
-//! fourth-order solution for step-size control (see
+//! of the high orders, and DPRKN6 and DPRKN8 carry embedded fourth- and
+//! sixth-order solutions for step-size control (see
 //! [`crate::measure::adaptive`]).
 
 use super::{Scheme, SchemeMeta, StepFailure, WithAcceleration};

@@ -172,10 +172,10 @@ mod sb3a5 {
 /// and the weights they would have fixed go into the `h^7` error terms:
 /// measured, it reaches a global error of 1e-9 with 2.3 (circular orbit) to
 /// 3.8 (oscillator) times fewer force evaluations than Yoshida's sixth
-/// order, an error constant 150 to 3000 times smaller at equal cost per
-/// step. The published 15 digits satisfy the order
+/// order, a global error 140 to 3000 times smaller at equal force
+/// evaluations. The published 15 digits satisfy the order
 /// conditions to 8e-18; the weights below are the doubles nearest to the
-/// exact solution nearest to them (they move by at most 6e-16).
+/// exact solution nearest to them (they move by at most 6.1e-16).
 pub const BLANES_MOAN_SRKN11: SplittingTable = SplittingTable::new(
     SchemeMeta {
         id: "blanes-moan-srkn11b",

@@ -55,10 +55,12 @@ impl<I: AdaptiveIntegrator> SceneVisitor for TimeRuns<'_, I> {
             .points
             .iter()
             .map(|p| {
+                // NaN when no run succeeded: the race leaves such points out
                 (0..PEER_REPEATS)
                     .filter_map(|_| integrator.run(scene, ladder.t_end, p.tolerance).ok())
                     .map(|run| run.time.as_secs_f64())
-                    .fold(f64::INFINITY, f64::min)
+                    .reduce(f64::min)
+                    .unwrap_or(f64::NAN)
             })
             .collect()
     }

@@ -123,22 +123,22 @@ fn following_times_grow_like_q_over_two_lambda_ln_one_over_h() {
         }
         if r.window.is_none() {
             // undecided only where the offsets ran into round-off: the ladder
-            // ends with its two finest offsets on the floor, and the following
-            // offsets span at least a factor 10^3
+            // ends with its two finest offsets on the floor, and the rungs of
+            // the following law span at least a factor 10^3 in the offset
             let floor = r
                 .rungs
                 .iter()
                 .rev()
                 .take(2)
                 .all(|g| g.dropped == Some(DropReason::RoundOff));
-            let law: Vec<f64> = r
-                .rungs
+            let [a, b] = r.law_rungs.expect("the following law's rungs");
+            let law: Vec<f64> = r.rungs[a..=b]
                 .iter()
                 .filter_map(|g| g.barrier_offset.map(f64::abs))
                 .collect();
             let span = law.iter().cloned().fold(0.0, f64::max)
                 / law.iter().cloned().fold(f64::INFINITY, f64::min);
-            if !floor || span < 1e3 || r.consistent.is_some() {
+            if !floor || !r.reached_round_off || span < 1e3 || r.consistent.is_some() {
                 failures.push(format!(
                     "{}: no window without reaching round-off ({floor}, span {span:.1e}): {}",
                     r.scheme, r.reason

@@ -193,3 +193,28 @@ fn an_exact_scheme_stops_at_the_floor_without_a_verdict() {
     );
     assert!(r.advice.unwrap().contains("exact on this scene"));
 }
+
+/// Why DPRKN8 is in the library but not the catalogue: its order passes on
+/// the oscillator and both Kepler orbits, while on the anharmonic well its
+/// error is so small that no window of two halvings fits between the rungs
+/// where its next terms still compete and the round-off floor: undecided,
+/// never failed.
+#[test]
+fn dprkn8_passes_on_three_scenes_and_is_undecided_on_the_anharmonic_well() {
+    use stepladder::measure::Verdict;
+    use stepladder::scene::{Anharmonic, KeplerCircular, KeplerEccentric};
+    use stepladder::scheme::DPRKN8;
+    let spec = OrderSpec::default();
+    let orders = [
+        global_order(&DPRKN8, &Harmonic::default(), &spec).unwrap(),
+        global_order(&DPRKN8, &KeplerCircular, &spec).unwrap(),
+        global_order(&DPRKN8, &KeplerEccentric::default(), &spec).unwrap(),
+    ];
+    for r in &orders {
+        assert!(r.passed(), "{}", r.reason);
+        let p = r.measured_order.unwrap();
+        assert!((p - 8.0).abs() < 0.35, "{p}");
+    }
+    let well = global_order(&DPRKN8, &Anharmonic::default(), &spec).unwrap();
+    assert_eq!(well.verdict, Verdict::Inconclusive, "{}", well.reason);
+}

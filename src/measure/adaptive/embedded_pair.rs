@@ -1,5 +1,5 @@
-//! The catalogue's own adaptive integrator: an embedded Runge-Kutta-Nyström
-//! pair with the standard step-size controller (Hairer, Nørsett, Wanner I,
+//! The crate's own adaptive integrators: embedded Runge-Kutta-Nyström
+//! pairs with the standard step-size controller (Hairer, Nørsett, Wanner I,
 //! II.4).
 //!
 //! Each step is tried with the main (order `p`) and the embedded (order `q`)
@@ -95,8 +95,7 @@ pub struct EmbeddedPair<const S: usize> {
     pub controller: Controller,
 }
 
-/// Dormand and Prince's RKN6(4) with the standard controller: the
-/// catalogue's own adaptive integrator.
+/// Dormand and Prince's RKN6(4) with the standard controller.
 pub const DPRKN6_ADAPTIVE: EmbeddedPair<6> = EmbeddedPair::new("DPRKN6(4) adaptive", &DPRKN6);
 
 /// Dormand, El-Mikkawy and Prince's RKN8(6) with the standard controller:
@@ -199,7 +198,11 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
         for i in 1..=steps {
             self.table.step(scene, &mut carry, h).ok()?;
             let exact = scene.exact(i as f64 * h)?;
-            worst = worst.max(scene.phase_distance(&self.table.state(&carry, h), &exact));
+            let d = scene.phase_distance(&self.table.state(&carry, h), &exact);
+            if !d.is_finite() {
+                return None;
+            }
+            worst = worst.max(d);
         }
         worst.is_finite().then_some(worst)
     }

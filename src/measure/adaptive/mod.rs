@@ -3,7 +3,7 @@
 //! are judged against what its controller's theory predicts.
 //!
 //! - [`integrator`]: the [`AdaptiveIntegrator`] trait every adaptive method
-//!   is run through (the catalogue's own pair here, the `ode_solvers` peer
+//!   is run through (the crate's own pairs here, the `ode_solvers` peer
 //!   in [`crate::measure::cost::peer`]);
 //! - [`embedded_pair`]: an embedded Runge-Kutta-Nyström pair with the
 //!   standard step-size controller;

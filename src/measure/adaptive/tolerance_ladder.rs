@@ -378,6 +378,7 @@ fn point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
 ) -> Result<TolerancePoint, Error> {
     let run = integrator.run(scene, t_end, tol)?;
     let error = if run.end == RunEnd::Reached && scene.exact(0.0).is_some() {
+        // a NaN anywhere poisons the maximum (f64::max would drop it)
         let worst = run
             .trajectory
             .iter()
@@ -386,7 +387,10 @@ fn point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
                     .exact(*t)
                     .map_or(f64::NAN, |x| scene.phase_distance(s, &x))
             })
-            .fold(0.0, f64::max);
+            .fold(
+                0.0,
+                |m: f64, d| if d.is_nan() { f64::NAN } else { m.max(d) },
+            );
         worst.is_finite().then_some(worst)
     } else {
         None
@@ -585,7 +589,10 @@ fn pre_asymptotic_method(claims: &AdaptiveClaims, f: &Proportionality) -> Option
     // steps grow like TOL^(-1/m) (a controller assuming the wrong power
     // still steps by its estimate's, and is refuted here)
     let steps = f.step_scaling.as_ref()?;
-    let controller = steps.ci95[0] <= -1.0 / m && -1.0 / m <= steps.ci95[1];
+    // and the interval must be narrow enough to tell m from its neighbours:
+    // -1/m and -1/(m + 1) are 1/(m (m + 1)) apart, so at most half that wide
+    let sharp = steps.ci95[1] - steps.ci95[0] < 1.0 / (m * (m + 1.0));
+    let controller = sharp && steps.ci95[0] <= -1.0 / m && -1.0 / m <= steps.ci95[1];
     let above = controller && method.ci95[0] > claims.order as f64;
     let predicted = [method.ci95[0] / m, method.ci95[1] / m];
     let agrees = predicted[0] <= f.ci95[1] && f.ci95[0] <= predicted[1];

@@ -12,7 +12,7 @@
 //! interpolated, so no evaluation is spent on dense output.
 //!
 //! The peer runs through the same [`AdaptiveIntegrator`] trait as the
-//! catalogue's own adaptive pair, so the tolerance ladder
+//! crate's own adaptive pairs, so the tolerance ladder
 //! ([`crate::measure::adaptive::tolerance_ladder`]) judges both alike.
 
 use crate::error::Error;

@@ -192,10 +192,16 @@ pub struct FollowingRecord {
     pub well: WellSpec,
     /// `lambda = sqrt(2k)`.
     pub lambda: f64,
-    /// The event of every fitted rung, when they agree.
+    /// The event of every rung of the following law, when they agree.
     pub event: Option<Event>,
     /// First and last rung fitted.
     pub window: Option<[usize; 2]>,
+    /// First and last rung of the following law `T` against
+    /// `ln(E_b/|dE|)`: the window's, or without one the finest clean rungs
+    /// that end the same way.
+    pub law_rungs: Option<[usize; 2]>,
+    /// The ladder ended with its two finest offsets on the round-off floor.
+    pub reached_round_off: bool,
     /// `|dE| / E_b = C h^q` over the window: `q` is the slope.
     pub offset_law: Option<PowerLaw>,
     /// The signed coefficient `dE / (E_b h^q)` at the window's finest rung.
@@ -262,17 +268,22 @@ pub fn following<M: Scheme>(scheme: &M, well: WellSpec) -> Result<FollowingRecor
     // needs no asymptotic window in `h`. Without one it is fitted over the
     // finest clean rungs that end the same way (an offset too small to
     // resolve its exponent in `h` still tests the linearised motion).
-    let law_rungs: Vec<&FollowingRung> = match (window, choice.clean) {
-        (Some(_), _) => fitted.clone(),
+    let law_span: Option<[usize; 2]> = match (window, choice.clean) {
+        (Some(w), _) => Some(w),
         (None, Some((a, b))) => {
             let last = rungs[b].event;
-            let same = rungs[a..=b].iter().rev().take_while(|r| r.event == last);
-            let mut trailing: Vec<&FollowingRung> = same.collect();
-            trailing.reverse();
-            trailing
+            let same = rungs[a..=b]
+                .iter()
+                .rev()
+                .take_while(|r| r.event == last)
+                .count();
+            Some([b + 1 - same, b])
         }
-        (None, None) => Vec::new(),
+        (None, None) => None,
     };
+    let law_rungs: Vec<&FollowingRung> =
+        law_span.map_or(Vec::new(), |[a, b]| rungs[a..=b].iter().collect());
+    let reached_round_off = on_round_off_floor(&rungs, &choice.dropped);
     let event = law_rungs
         .first()
         .map(|r| r.event)
@@ -309,7 +320,13 @@ pub fn following<M: Scheme>(scheme: &M, well: WellSpec) -> Result<FollowingRecor
         .iter()
         .filter_map(|r| r.time)
         .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.max(t))));
-    let (consistent, reason) = judge(lambda, offset_law, slope_in_step, slope_in_offset);
+    let (consistent, reason) = judge(
+        lambda,
+        offset_law,
+        slope_in_step,
+        slope_in_offset,
+        reached_round_off,
+    );
     let steps = rungs.iter().map(|r| r.steps).sum();
     Ok(FollowingRecord {
         scheme: meta.id,
@@ -319,6 +336,8 @@ pub fn following<M: Scheme>(scheme: &M, well: WellSpec) -> Result<FollowingRecor
         lambda,
         event,
         window,
+        law_rungs: law_span,
+        reached_round_off,
         offset_law,
         offset_coefficient,
         slope_in_step,
@@ -362,37 +381,47 @@ fn run_ladder<M: Scheme>(
         // the two finest rungs with an offset on the round-off floor: finer
         // steps only add round-off
         let choice = select_window(&offsets(&rungs), scale);
-        let on_floor = rungs
-            .iter()
-            .zip(&choice.dropped)
-            .filter(|(r, _)| r.barrier_offset.is_some())
-            .rev()
-            .take(2)
-            .filter(|(_, d)| **d == Some(DropReason::RoundOff))
-            .count();
-        if on_floor == 2 {
+        if on_round_off_floor(&rungs, &choice.dropped) {
             break;
         }
     }
     rungs
 }
 
+/// The two finest rungs with an offset sit on the round-off floor: finer
+/// steps would only add round-off.
+fn on_round_off_floor(rungs: &[FollowingRung], dropped: &[Option<DropReason>]) -> bool {
+    rungs
+        .iter()
+        .zip(dropped)
+        .filter(|(r, _)| r.barrier_offset.is_some())
+        .rev()
+        .take(2)
+        .filter(|(_, d)| **d == Some(DropReason::RoundOff))
+        .count()
+        == 2
+}
+
 /// The theory check: `T` against `ln(E_b/|dE|)` must have slope `1 /
 /// (2 lambda)`, and against `ln(1/h)` slope `q / (2 lambda)` with `q` the
 /// exponent of the offsets themselves, each within
 /// [`SEPARATRIX_SLOPE_TOLERANCE`]. Without a window in `h` only the first
-/// can be checked: the verdict is then undecided when it holds, a failure
-/// when it does not.
+/// can be checked, and only a ladder that ran into round-off may leave the
+/// second undecided: the verdict is then undecided when the first holds, a
+/// failure when it does not. A ladder without a window for any other reason
+/// (runs that blow up, offsets above the ceiling, too few rungs) fails.
 fn judge(
     lambda: f64,
     law: Option<PowerLaw>,
     in_step: Option<LineFit>,
     in_offset: Option<LineFit>,
+    reached_round_off: bool,
 ) -> (Option<bool>, String) {
     let theory = 1.0 / (2.0 * lambda);
+    let undecided = if reached_round_off { None } else { Some(false) };
     let Some(in_offset) = in_offset else {
         return (
-            None,
+            undecided,
             "no window of asymptotic rungs: too few runs with a barrier energy offset between \
              round-off and the offset ceiling"
                 .into(),
@@ -407,11 +436,16 @@ fn judge(
     let (Some(law), Some(in_step)) = (law, in_step) else {
         let holds = off <= SEPARATRIX_SLOPE_TOLERANCE;
         return (
-            (!holds).then_some(false),
+            if holds { undecided } else { Some(false) },
             format!(
                 "{following} over {} rungs; the offset's exponent in h is undecided: no window \
-                 of asymptotic rungs before the round-off floor",
-                in_offset.points
+                 of asymptotic rungs {}",
+                in_offset.points,
+                if reached_round_off {
+                    "before the round-off floor"
+                } else {
+                    "although the ladder did not reach round-off"
+                }
             ),
         );
     };
@@ -576,32 +610,29 @@ mod tests {
         }
     }
 
-    /// Without a window in `h` the following law alone is judged: holding,
-    /// it leaves the verdict undecided; broken, it fails; with a window both
-    /// slopes decide.
+    /// Without a window in `h` the following law alone is judged, and only
+    /// on a ladder that ran into round-off: holding, it leaves the verdict
+    /// undecided; broken, it fails. A ladder without a window that never
+    /// reached round-off (runs that blew up, offsets above the ceiling)
+    /// fails. With a window both slopes decide.
     #[test]
     fn a_missing_window_is_undecided_only_while_the_following_law_holds() {
         let lambda = 2f64.sqrt();
         let theory = 1.0 / (2.0 * lambda);
-        assert_eq!(judge(lambda, None, None, Some(line(theory))).0, None);
-        assert_eq!(judge(lambda, None, None, None).0, None);
-        assert_eq!(
-            judge(lambda, None, None, Some(line(1.2 * theory))).0,
-            Some(false)
-        );
+        let holds = Some(line(theory));
+        let broken = Some(line(1.2 * theory));
+        assert_eq!(judge(lambda, None, None, holds, true).0, None);
+        assert_eq!(judge(lambda, None, None, None, true).0, None);
+        assert_eq!(judge(lambda, None, None, broken, true).0, Some(false));
+        assert_eq!(judge(lambda, None, None, holds, false).0, Some(false));
+        assert_eq!(judge(lambda, None, None, None, false).0, Some(false));
         // |dE| = h^6 exactly
         let law = power_law(&[(0.1, 1e-6), (0.05, 1.5625e-8), (0.025, 2.44140625e-10)]).unwrap();
         assert!((law.slope - 6.0).abs() < 1e-12);
-        let right = line(6.0 * theory);
-        assert_eq!(
-            judge(lambda, Some(law), Some(right), Some(line(theory))).0,
-            Some(true)
-        );
-        let wrong = line(4.0 * theory);
-        assert_eq!(
-            judge(lambda, Some(law), Some(wrong), Some(line(theory))).0,
-            Some(false)
-        );
+        let right = Some(line(6.0 * theory));
+        assert_eq!(judge(lambda, Some(law), right, holds, true).0, Some(true));
+        let wrong = Some(line(4.0 * theory));
+        assert_eq!(judge(lambda, Some(law), wrong, holds, true).0, Some(false));
     }
 
     #[test]
