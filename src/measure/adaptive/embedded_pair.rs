@@ -40,8 +40,9 @@
 use super::integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request};
 use super::tolerance_ladder::proportionality_exponent;
 use crate::error::Error;
+use crate::measure::accuracy::order::exact_rung_error;
 use crate::scene::Scene;
-use crate::scheme::{DPRKN6, DPRKN8, NystromTable, Scheme};
+use crate::scheme::{DPRKN6, DPRKN8, NystromTable};
 use crate::state::State;
 use std::time::Instant;
 
@@ -192,19 +193,8 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
         t_end: f64,
         steps: u64,
     ) -> Option<f64> {
-        let h = t_end / steps.max(1) as f64;
-        let mut carry = self.table.start(scene, &scene.initial(), h);
-        let mut worst = 0.0f64;
-        for i in 1..=steps {
-            self.table.step(scene, &mut carry, h).ok()?;
-            let exact = scene.exact(i as f64 * h)?;
-            let d = scene.phase_distance(&self.table.state(&carry, h), &exact);
-            if !d.is_finite() {
-                return None;
-            }
-            worst = worst.max(d);
-        }
-        worst.is_finite().then_some(worst)
+        // measured as the order study measures a rung
+        exact_rung_error(self.table, scene, t_end, steps.max(1)).filter(|e| e.is_finite())
     }
 
     fn integrate<P: Scene<D>, const D: usize>(
