@@ -2,7 +2,7 @@
 //! the Morse oscillator have no exact solution, so the order study measures
 //! them against the scheme itself at half the step.
 
-use crate::scene::{Scene, SceneMeta};
+use crate::scene::{Invariant, InvariantValue, Scene, SceneMeta, invariant};
 use crate::state::{Real, State};
 use nalgebra::{SVector, Vector1, Vector2, Vector4, Vector6};
 use std::f64::consts::{PI, TAU};
@@ -79,6 +79,31 @@ impl Scene<6> for FigureEight {
 
     fn exact(&self, _: f64) -> Option<State<6>> {
         None
+    }
+
+    /// An isolated system of three equal masses: energy, both components
+    /// of the linear momentum and the angular momentum.
+    fn invariants(&self) -> &'static [Invariant] {
+        &[
+            Invariant::Energy,
+            Invariant::Momentum { axis: 0 },
+            Invariant::Momentum { axis: 1 },
+            Invariant::AngularMomentum { axis: 2 },
+        ]
+    }
+
+    fn invariant(&self, which: Invariant, s: &State<6>) -> Option<InvariantValue> {
+        let w = self.frequency();
+        match which {
+            Invariant::Energy => Some(invariant::energy(self, s)),
+            Invariant::Momentum { axis } if axis < 2 => {
+                Some(invariant::momentum(s, &[1.0; 3], 2, axis as usize, w))
+            }
+            Invariant::AngularMomentum { axis: 2 } => {
+                Some(invariant::planar_angular_momentum(s, w))
+            }
+            _ => None,
+        }
     }
 }
 

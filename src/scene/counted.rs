@@ -63,6 +63,16 @@ impl<S: Scene<D>, const D: usize> Scene<D> for Counted<S> {
     fn exact(&self, t: f64) -> Option<State<D>> {
         self.inner.exact(t)
     }
+    fn invariants(&self) -> &'static [crate::scene::Invariant] {
+        self.inner.invariants()
+    }
+    fn invariant(
+        &self,
+        which: crate::scene::Invariant,
+        s: &State<D>,
+    ) -> Option<crate::scene::InvariantValue> {
+        self.inner.invariant(which, s)
+    }
     fn default_t_end(&self) -> f64 {
         self.inner.default_t_end()
     }

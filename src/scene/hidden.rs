@@ -37,6 +37,16 @@ impl<S: Scene<D>, const D: usize> Scene<D> for Hidden<S> {
     fn exact(&self, _: f64) -> Option<State<D>> {
         None
     }
+    fn invariants(&self) -> &'static [crate::scene::Invariant] {
+        self.0.invariants()
+    }
+    fn invariant(
+        &self,
+        which: crate::scene::Invariant,
+        s: &State<D>,
+    ) -> Option<crate::scene::InvariantValue> {
+        self.0.invariant(which, s)
+    }
     fn default_t_end(&self) -> f64 {
         self.0.default_t_end()
     }

@@ -1,6 +1,6 @@
 //! The Kepler problem `r'' = -GM r / |r|^3` in the plane, in astronomical units.
 
-use super::{Parameters, Parametrised, Scene, SceneMeta};
+use super::{Invariant, InvariantValue, Parameters, Parametrised, Scene, SceneMeta, invariant};
 use crate::error::Error;
 use crate::state::{Real, State};
 use nalgebra::{SVector, Vector2};
@@ -37,6 +37,20 @@ impl Parametrised for KeplerCircular {
 }
 
 impl Scene<2> for KeplerCircular {
+    /// A central force from a fixed centre: the angular momentum about it
+    /// is conserved, the linear momentum is not.
+    fn invariants(&self) -> &'static [Invariant] {
+        &[Invariant::Energy, Invariant::AngularMomentum { axis: 2 }]
+    }
+    fn invariant(&self, which: Invariant, s: &State<2>) -> Option<InvariantValue> {
+        match which {
+            Invariant::Energy => Some(invariant::energy(self, s)),
+            Invariant::AngularMomentum { axis: 2 } => {
+                Some(invariant::planar_angular_momentum(s, self.frequency()))
+            }
+            _ => None,
+        }
+    }
     fn meta(&self) -> SceneMeta {
         SceneMeta {
             id: "kepler-circular",
@@ -164,6 +178,18 @@ impl Parametrised for KeplerEccentric {
 }
 
 impl Scene<2> for KeplerEccentric {
+    fn invariants(&self) -> &'static [Invariant] {
+        &[Invariant::Energy, Invariant::AngularMomentum { axis: 2 }]
+    }
+    fn invariant(&self, which: Invariant, s: &State<2>) -> Option<InvariantValue> {
+        match which {
+            Invariant::Energy => Some(invariant::energy(self, s)),
+            Invariant::AngularMomentum { axis: 2 } => {
+                Some(invariant::planar_angular_momentum(s, self.frequency()))
+            }
+            _ => None,
+        }
+    }
     fn meta(&self) -> SceneMeta {
         SceneMeta {
             id: "kepler-eccentric",

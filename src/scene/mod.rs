@@ -9,6 +9,7 @@ mod counted;
 mod elliptic;
 mod harmonic;
 mod hidden;
+pub mod invariant;
 mod kepler;
 mod potential;
 mod scaled;
@@ -20,6 +21,7 @@ pub use anharmonic::Anharmonic;
 pub use counted::Counted;
 pub use harmonic::Harmonic;
 pub use hidden::Hidden;
+pub use invariant::{Invariant, InvariantValue};
 pub use kepler::{KeplerCircular, KeplerEccentric};
 pub use potential::{FromPotential, Potential};
 pub use scaled::Scaled;
@@ -76,6 +78,24 @@ pub trait Scene<const D: usize> {
         0.5 * s.v.norm_squared() + self.potential(&s.q)
     }
 
+    /// What the exact flow conserves (see [`invariant`]): the energy
+    /// always; linear and angular momentum where the scene has the
+    /// symmetry. On a scene without an exact solution the order study
+    /// checks that each returns to its initial value as `h -> 0`.
+    fn invariants(&self) -> &'static [Invariant] {
+        &[Invariant::Energy]
+    }
+
+    /// The value of `which` at `s` with its sensitivity to a phase-space
+    /// error; `None` for an invariant the scene does not declare. Scenes
+    /// with momenta override this and [`Scene::invariants`] together.
+    fn invariant(&self, which: Invariant, s: &State<D>) -> Option<InvariantValue> {
+        match which {
+            Invariant::Energy => Some(invariant::energy(self, s)),
+            _ => None,
+        }
+    }
+
     /// The angular frequency `2 pi / period` that turns velocities into lengths.
     fn frequency(&self) -> f64 {
         TAU / self.period()
@@ -127,6 +147,12 @@ impl<S: Scene<D>, const D: usize> Scene<D> for &S {
     }
     fn energy(&self, s: &State<D>) -> f64 {
         (**self).energy(s)
+    }
+    fn invariants(&self) -> &'static [Invariant] {
+        (**self).invariants()
+    }
+    fn invariant(&self, which: Invariant, s: &State<D>) -> Option<InvariantValue> {
+        (**self).invariant(which, s)
     }
     fn frequency(&self) -> f64 {
         (**self).frequency()

@@ -70,4 +70,23 @@ impl<S: Scene<D>, const D: usize> Scene<D> for Scaled<S> {
     fn scale(&self) -> f64 {
         self.inner.scale() * self.factor
     }
+    fn invariants(&self) -> &'static [crate::scene::Invariant] {
+        self.inner.invariants()
+    }
+    /// The inner scene's invariant, in these units: its value times
+    /// `factor^k` for an invariant of length power `k`, its sensitivity (per
+    /// unit of the scaled distance) times `factor^(k - 1)`.
+    fn invariant(
+        &self,
+        which: crate::scene::Invariant,
+        s: &State<D>,
+    ) -> Option<crate::scene::InvariantValue> {
+        let k = which.length_power();
+        self.inner
+            .invariant(which, &self.back(s))
+            .map(|i| crate::scene::InvariantValue {
+                value: i.value * self.factor.powi(k),
+                sensitivity: i.sensitivity * self.factor.powi(k - 1),
+            })
+    }
 }

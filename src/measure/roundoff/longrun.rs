@@ -132,13 +132,13 @@ pub struct LongrunRecord {
 /// synchronised state.
 pub trait Conserved<const D: usize>: Scene<D> {
     /// Which quantity.
-    fn invariant(&self) -> Invariant;
+    fn quantity(&self) -> Invariant;
     /// Its value at `(q, v)` for runs with step `h`.
     fn value(&self, q: &nalgebra::SVector<f64, D>, v: &nalgebra::SVector<f64, D>, h: f64) -> f64;
 }
 
 impl Conserved<1> for Harmonic {
-    fn invariant(&self) -> Invariant {
+    fn quantity(&self) -> Invariant {
         Invariant::ModifiedEnergy
     }
     #[inline(always)]
@@ -154,7 +154,7 @@ fn angular_momentum(q: &nalgebra::Vector2<f64>, v: &nalgebra::Vector2<f64>) -> f
 }
 
 impl Conserved<2> for KeplerCircular {
-    fn invariant(&self) -> Invariant {
+    fn quantity(&self) -> Invariant {
         Invariant::AngularMomentum
     }
     #[inline(always)]
@@ -164,7 +164,7 @@ impl Conserved<2> for KeplerCircular {
 }
 
 impl Conserved<2> for KeplerEccentric {
-    fn invariant(&self) -> Invariant {
+    fn quantity(&self) -> Invariant {
         Invariant::AngularMomentum
     }
     #[inline(always)]
@@ -225,7 +225,7 @@ pub fn longrun<M: Scheme, S: Conserved<D>, const D: usize>(
         scheme: scheme.meta().id,
         compensated,
         scene: scene.meta().id,
-        invariant: scene.invariant(),
+        invariant: scene.quantity(),
         h,
         steps,
         runs: RUNS,
