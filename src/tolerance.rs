@@ -17,6 +17,15 @@ pub fn blow_up_bound(scale: f64) -> f64 {
 /// the residual bias of a finite ladder on hard scenes.
 pub const ORDER_TOLERANCE: f64 = 0.1;
 
+/// An error that falls slower than `h^STALL_ORDER` over the finest clean
+/// rungs has stalled. Orders are integers: a stalled error has order 0, and
+/// the slowest convergence any claim allows is order 1, whose error an
+/// order-1 scheme's fit may put a little below 1 by chance (0.99 in [0.98,
+/// 1.00] is seen). The boundary between the two hypotheses is halfway, in
+/// the exponent: an error must fall slower than `h^(1/2)` with its whole
+/// interval, and its medians too, to be called stalled.
+pub const STALL_ORDER: f64 = 0.5;
+
 /// Fewest rungs an order fit may use. The fit has four coefficients (see
 /// [`crate::measure::accuracy::fit`]); six rungs leave two degrees of freedom for the
 /// interval, and a window shorter than that says too little to trust.

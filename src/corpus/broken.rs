@@ -1048,3 +1048,160 @@ mod tests {
         }
     }
 }
+
+// ------------------------------------------------- another equation, or a bias
+
+/// Velocity Verlet whose kicks give every component the acceleration of the
+/// first: `v_k += (h/2) a_0(q)` for every `k`.
+///
+/// The bug changes the equation, not the method: the step is exactly
+/// velocity Verlet for `q'' = a_0(q) (1, 1, ..., 1)`, so it converges at ORDER
+/// 2 to the solution of that equation. The field `a_0 (1, ..., 1)` is not
+/// a gradient unless `a_0` depends on `sum q` alone, so the map is NOT
+/// symplectic in general; it is still symmetric (the Verlet form of any
+/// field is). On a scene without an exact solution the
+/// runs at `h` and `h/2` agree to `O(h^2)`, so the half-step comparison sees
+/// order 2; the energy, momentum and angular momentum of the scene's
+/// equations change by amounts of order one that do not shrink with `h`.
+/// Claims velocity Verlet's order 2.
+#[derive(Clone, Copy, Debug)]
+pub struct FirstComponentKick {
+    /// The (false) claims.
+    pub meta: SchemeMeta,
+}
+
+impl OneStep for FirstComponentKick {
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    #[inline(always)]
+    fn advance<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        scene: &P,
+        s: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        let half = h * R::of(0.5);
+        let first = |q: &nalgebra::SVector<R, D>| {
+            let a: nalgebra::SVector<R, D> = scene.acceleration(q);
+            nalgebra::SVector::<R, D>::from_element(a[0]) // the bug
+        };
+        s.v += first(&s.q) * half;
+        s.q += s.v * h;
+        s.v += first(&s.q) * half;
+        Ok(())
+    }
+}
+
+/// The first-component velocity Verlet (see [`FirstComponentKick`]).
+pub const FIRST_COMPONENT_KICK: FirstComponentKick = FirstComponentKick {
+    meta: posing_as(
+        VELOCITY_VERLET.meta,
+        "verlet-first-component-kick",
+        "velocity Verlet kicking every component with the first one's force",
+    ),
+};
+
+/// Velocity Verlet whose kicks scale the last component's force by `1 -
+/// 1e-3`: a mass typed `1.001` where `1` was meant.
+///
+/// Again another equation, `q'' = diag(1, ..., 1, 0.999) a(q)`, solved at
+/// ORDER 2; its field is not a gradient (symplecticity is lost at `O(1e-3)`),
+/// its flow still symmetric. The scene's energy changes by `O(1e-3)` of the
+/// motion's and the momentum by `1e-3` of the last body's impulse, limits
+/// that do not shrink with `h`. Claims order 2.
+#[derive(Clone, Copy, Debug)]
+pub struct ScaledLastKick {
+    /// The (false) claims.
+    pub meta: SchemeMeta,
+}
+
+impl OneStep for ScaledLastKick {
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    #[inline(always)]
+    fn advance<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        scene: &P,
+        s: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        let half = h * R::of(0.5);
+        let scaled = |q: &nalgebra::SVector<R, D>| {
+            let mut a: nalgebra::SVector<R, D> = scene.acceleration(q);
+            a[D - 1] *= R::of(0.999); // the bug
+            a
+        };
+        s.v += scaled(&s.q) * half;
+        s.q += s.v * h;
+        s.v += scaled(&s.q) * half;
+        Ok(())
+    }
+}
+
+/// The velocity Verlet with the last force scaled (see [`ScaledLastKick`]).
+pub const SCALED_LAST_KICK: ScaledLastKick = ScaledLastKick {
+    meta: posing_as(
+        VELOCITY_VERLET.meta,
+        "verlet-scaled-last-kick",
+        "velocity Verlet with the last component's force scaled by 0.999",
+    ),
+};
+
+/// Velocity Verlet whose step passes through `f32` on its way in, as a units
+/// helper returning `f32` would do: it steps `h' = fl32(h)`, `|h' / h - 1|
+/// <= 2^-24`.
+///
+/// Each rung is a correct second-order run of the exact flow over `N h'`
+/// instead of `N h`: its error is `C h^2 + |x'| t (h' / h - 1)`, a phase
+/// error of up to `6e-8` relative times `w t` that does not shrink with `h`
+/// (it jumps with the rounding of each `h`), so against the exact solution
+/// the error falls like `h^2` down to about `1e-8` and stalls there, far
+/// above the round-off floor of an `f64` run (`1e-15`). Against its own
+/// half step it converges (`fl32(h / 2) = fl32(h) / 2` exactly), and every
+/// invariant is conserved as well as velocity Verlet conserves it: only an
+/// exact solution can see this bias. Claims order 2.
+#[derive(Clone, Copy, Debug)]
+pub struct F32StepVerlet {
+    /// The (false) claims.
+    pub meta: SchemeMeta,
+}
+
+impl OneStep for F32StepVerlet {
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    #[inline(always)]
+    fn advance<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        scene: &P,
+        s: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        // the bug: the step rounded to f32 (in the dual numbers of a
+        // tangent map the step is a constant, kept as it is)
+        let h = match crate::state::as_f64(h) {
+            Some(x) => R::of((x as f32) as f64),
+            None => h,
+        };
+        let half = h * R::of(0.5);
+        s.v += scene.acceleration(&s.q) * half;
+        s.q += s.v * h;
+        s.v += scene.acceleration(&s.q) * half;
+        Ok(())
+    }
+}
+
+/// The velocity Verlet whose step passes through `f32` (see
+/// [`F32StepVerlet`]).
+pub const F32_STEP_VERLET: F32StepVerlet = F32StepVerlet {
+    meta: posing_as(
+        VELOCITY_VERLET.meta,
+        "verlet-f32-step",
+        "velocity Verlet with its step rounded to f32",
+    ),
+};

@@ -250,6 +250,36 @@ pub fn correct() -> Vec<Entry> {
 pub fn broken() -> Vec<Entry> {
     vec![
         Entry::broken(
+            &FIRST_COMPONENT_KICK,
+            FigureEight,
+            ORDER,
+            "every component kicked with the first one's force: order 2 towards the solution of another equation, which the half-step comparison cannot tell from the scene's; its energy does not return to its initial value as h -> 0",
+        ),
+        Entry::broken(
+            &SCALED_LAST_KICK,
+            FigureEight,
+            ORDER,
+            "the last component's force scaled by 0.999: another equation, solved at order 2; the energy and momenta change by limits of order 1e-3 that do not shrink with h",
+        ),
+        Entry::broken(
+            &SCALED_LAST_KICK,
+            crate::corpus::held_out::Planets4,
+            ORDER,
+            "the same on a star with three planets in mass-weighted coordinates: the outer planet's force 0.1% weak",
+        ),
+        Entry::broken(
+            &F32_STEP_VERLET,
+            Harmonic::default(),
+            ORDER,
+            "the step rounded to f32: a phase error of up to 6e-8 w t that does not shrink with h, so the error stalls near 1e-8, far above the f64 round-off floor",
+        ),
+        Entry::broken(
+            &F32_STEP_VERLET,
+            KeplerCircular,
+            ORDER,
+            "the same stall on the circular orbit",
+        ),
+        Entry::broken(
             &FOREST_RUTH_4_DECIMALS,
             Harmonic::default(),
             ORDER,

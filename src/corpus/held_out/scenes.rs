@@ -1,6 +1,6 @@
 //! The held-out batch's scenes.
 
-use crate::scene::{Scene, SceneMeta};
+use crate::scene::{Invariant, InvariantValue, Scene, SceneMeta, invariant};
 use crate::state::{Real, State};
 use nalgebra::SVector;
 use std::f64::consts::{PI, TAU};
@@ -104,6 +104,16 @@ impl Scene<6> for LjTrimer {
 
     fn exact(&self, _: f64) -> Option<State<6>> {
         None
+    }
+
+    /// Three unit masses, isolated: energy, both momenta and the angular
+    /// momentum.
+    fn invariants(&self) -> &'static [Invariant] {
+        &PLANAR_BODY_INVARIANTS
+    }
+
+    fn invariant(&self, which: Invariant, s: &State<6>) -> Option<InvariantValue> {
+        planar_bodies(self, which, s, &[1.0; 3])
     }
 }
 
@@ -571,5 +581,42 @@ impl Scene<8> for Planets4 {
 
     fn exact(&self, _: f64) -> Option<State<8>> {
         None
+    }
+
+    /// An isolated system in mass-weighted coordinates: energy, both
+    /// momenta and the angular momentum.
+    fn invariants(&self) -> &'static [Invariant] {
+        &PLANAR_BODY_INVARIANTS
+    }
+
+    fn invariant(&self, which: Invariant, s: &State<8>) -> Option<InvariantValue> {
+        planar_bodies(self, which, s, &Self::MASSES.map(f64::sqrt))
+    }
+}
+
+/// What an isolated system of bodies in the plane conserves.
+const PLANAR_BODY_INVARIANTS: [Invariant; 4] = [
+    Invariant::Energy,
+    Invariant::Momentum { axis: 0 },
+    Invariant::Momentum { axis: 1 },
+    Invariant::AngularMomentum { axis: 2 },
+];
+
+/// The invariants of bodies in the plane stored `x1, y1, x2, y2, ...` in
+/// mass-weighted coordinates with these `sqrt(m_i)`.
+fn planar_bodies<S: Scene<D>, const D: usize>(
+    scene: &S,
+    which: Invariant,
+    s: &State<D>,
+    sqrt_masses: &[f64],
+) -> Option<InvariantValue> {
+    let w = scene.frequency();
+    match which {
+        Invariant::Energy => Some(invariant::energy(scene, s)),
+        Invariant::Momentum { axis } if axis < 2 => {
+            Some(invariant::momentum(s, sqrt_masses, 2, axis as usize, w))
+        }
+        Invariant::AngularMomentum { axis: 2 } => Some(invariant::planar_angular_momentum(s, w)),
+        _ => None,
     }
 }

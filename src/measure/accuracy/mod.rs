@@ -1,6 +1,7 @@
 //! The accuracy studies: how fast the error falls with the step, and against what.
 
 pub mod fit;
+pub mod invariants;
 pub mod order;
 pub mod order_verdict;
 pub mod phase;

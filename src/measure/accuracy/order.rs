@@ -49,8 +49,9 @@ use crate::error::Error;
 use crate::ladder::{AUTO_START, AutoLadder, LadderChoice, LadderEnd, per_octave, steps_for};
 use crate::measure::Verdict;
 use crate::measure::accuracy::fit::OrderFit;
+use crate::measure::accuracy::invariants::{InvariantRecord, InvariantSample, judge_invariant};
 use crate::run::{Outcome, integrate};
-use crate::scene::{Scaled, Scene};
+use crate::scene::{Invariant, InvariantValue, Scaled, Scene};
 use crate::scheme::Scheme;
 use crate::state::State;
 use crate::tolerance::{
@@ -136,6 +137,12 @@ pub struct OrderRecord {
     pub reason: String,
     /// For an inconclusive verdict, what to change so the data can decide.
     pub advice: Option<String>,
+    /// Without an exact solution, whether each quantity the scene's exact
+    /// flow conserves returns to its initial value as `h -> 0` (see
+    /// [`crate::measure::accuracy::invariants`]); a failure fails the order
+    /// study, whose convergence is then to the solution of another
+    /// equation. Empty with an exact solution, which says more.
+    pub invariants: Vec<InvariantRecord>,
     /// Every rung, coarse to fine.
     pub rungs: Vec<Rung>,
 }
@@ -302,6 +309,11 @@ struct Run<const D: usize> {
     /// Largest and final distance to the half step.
     half_step: Option<(f64, f64)>,
     round_off_sample: Option<f64>,
+    /// Per invariant of the scene (half-step reference only): the largest
+    /// change over the comparison times and the largest sensitivity.
+    invariants: Vec<(f64, f64)>,
+    /// Per invariant: the largest distance to its twin's value.
+    invariant_round_off: Vec<f64>,
 }
 
 /// The runs of one order study, keyed by step count.
@@ -311,6 +323,9 @@ struct Lab<'a, M, S, const D: usize> {
     t_end: f64,
     reference: Reference,
     scale: f64,
+    /// What the scene's exact flow conserves, checked where there is no
+    /// exact solution to compare with.
+    invariants: &'static [Invariant],
     runs: BTreeMap<u64, Run<D>>,
 }
 
@@ -327,6 +342,10 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             t_end,
             reference,
             scale: scene.scale(),
+            invariants: match reference {
+                Reference::Exact => &[],
+                Reference::HalfStep => scene.invariants(),
+            },
             runs: BTreeMap::new(),
         }
     }
@@ -377,7 +396,14 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
                 // the twin blew up where the run did not: round-off decides the rung
                 _ => f64::INFINITY,
             };
-            self.runs.get_mut(&steps).expect("run").round_off_sample = Some(sample);
+            let invariant_round_off = self.invariant_round_off(
+                self.runs[&steps].own.as_deref(),
+                twin_outcome.completed().then_some(&twin[..]),
+                &twin_scene,
+            );
+            let run = self.runs.get_mut(&steps).expect("run");
+            run.round_off_sample = Some(sample);
+            run.invariant_round_off = invariant_round_off;
         }
         if self.reference == Reference::Exact {
             self.compare_exact(steps);
@@ -399,11 +425,70 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
         (outcome, states)
     }
 
+    /// The value of invariant `k` at `s` (the scene declared it).
+    fn invariant(&self, k: usize, s: &State<D>) -> InvariantValue {
+        self.scene
+            .invariant(self.invariants[k], s)
+            .unwrap_or(InvariantValue {
+                value: f64::NAN,
+                sensitivity: f64::NAN,
+            })
+    }
+
+    /// Per invariant, the largest change along `own` from the scene's
+    /// initial value, and the largest sensitivity.
+    fn invariant_changes(&self, own: &[State<D>]) -> Vec<(f64, f64)> {
+        let start = self.scene.initial();
+        (0..self.invariants.len())
+            .map(|k| {
+                let initial = self.invariant(k, &start).value;
+                own.iter().fold((0.0f64, 0.0f64), |(change, sens), s| {
+                    let i = self.invariant(k, s);
+                    // a NaN (an undeclared invariant) must not vanish in max
+                    let d = (i.value - initial).abs();
+                    (
+                        if d.is_nan() { f64::NAN } else { change.max(d) },
+                        sens.max(i.sensitivity),
+                    )
+                })
+            })
+            .collect()
+    }
+
+    /// Per invariant, the largest distance between its values along the run
+    /// and along the twin (mapped back to the scene's units); infinite when
+    /// the twin blew up where the run did not.
+    fn invariant_round_off(
+        &self,
+        own: Option<&[State<D>]>,
+        twin: Option<&[State<D>]>,
+        twin_scene: &Scaled<&S>,
+    ) -> Vec<f64> {
+        (0..self.invariants.len())
+            .map(|k| match (own, twin) {
+                (Some(own), Some(twin)) => own
+                    .iter()
+                    .zip(twin)
+                    .map(|(a, b)| {
+                        (self.invariant(k, a).value - self.invariant(k, &twin_scene.back(b)).value)
+                            .abs()
+                    })
+                    .fold(0.0, f64::max),
+                _ => f64::INFINITY,
+            })
+            .collect()
+    }
+
     /// Runs `steps` steps from the scene's start and stores the run (as a
     /// reference only, until [`Lab::measure`] makes it a rung).
     fn execute(&mut self, steps: u64) {
         let (outcome, own, for_coarser) = self.run(steps);
         let done = outcome.completed();
+        let invariants = if done {
+            self.invariant_changes(&own)
+        } else {
+            Vec::new()
+        };
         self.runs.insert(
             steps,
             Run {
@@ -416,6 +501,8 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
                 error: None,
                 final_error: None,
                 round_off_sample: None,
+                invariants,
+                invariant_round_off: Vec::new(),
             },
         );
     }
@@ -666,6 +753,29 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
         }
     }
 
+    /// Each invariant of the scene judged over the measured rungs, given the
+    /// lower end of the order's interval.
+    fn invariant_records(&self, order_lo: Option<f64>) -> Vec<InvariantRecord> {
+        (0..self.invariants.len())
+            .map(|k| {
+                let samples: Vec<InvariantSample> = self
+                    .runs
+                    .iter()
+                    .filter(|(_, r)| r.measured && r.invariants.len() > k)
+                    .map(|(&steps, r)| InvariantSample {
+                        h: self.t_end / steps as f64,
+                        steps,
+                        change: r.invariants[k].0,
+                        sensitivity: r.invariants[k].1,
+                        round_off_sample: r.invariant_round_off.get(k).copied(),
+                        half_step_difference: r.half_step.map(|d| d.0),
+                    })
+                    .collect();
+                judge_invariant(self.invariants[k], &samples, order_lo)
+            })
+            .collect()
+    }
+
     /// The record: rungs, analysis and verdict.
     fn record(
         &self,
@@ -689,7 +799,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
         if let Some((a, b)) = analysis.choice.window.filter(|_| analysis.fit.is_some()) {
             rungs[a..=b].iter_mut().for_each(|r| r.used = true);
         }
-        let judgement = judge(
+        let mut judgement = judge(
             meta.order as f64,
             &rungs,
             &analysis,
@@ -697,6 +807,13 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             end,
             self.scale,
         );
+        let invariants = self.invariant_records(analysis.ci95.map(|ci| ci[0]));
+        if judgement.verdict == Verdict::Pass
+            && let Some(broken) = invariants.iter().find(|r| r.verdict == Verdict::Fail)
+        {
+            judgement.verdict = Verdict::Fail;
+            judgement.reason = format!("{} (though {})", broken.reason, judgement.reason);
+        }
         // put the judged rungs back among the references, by step count
         for (slot, rung) in measured.iter().zip(rungs) {
             all[*slot] = rung;
@@ -727,6 +844,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             verdict: judgement.verdict,
             reason: judgement.reason,
             advice: judgement.advice,
+            invariants,
             rungs: all,
         }
     }

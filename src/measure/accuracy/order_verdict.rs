@@ -5,10 +5,14 @@
 use crate::ladder::LadderEnd;
 use crate::measure::Verdict;
 use crate::measure::accuracy::fit::OrderFit;
+use crate::measure::accuracy::fit::power_law;
 use crate::measure::accuracy::rung::{DropReason, OrderReduction, Reference, Rung};
 use crate::measure::accuracy::window::Analysis;
 use crate::measure::accuracy::window::median_of;
-use crate::tolerance::{self, ERROR_CEILING, MIN_WINDOW, ORDER_TOLERANCE, REFERENCE_RUNGS};
+use crate::tolerance::{
+    self, ERROR_CEILING, MIN_WINDOW, MIN_WINDOW_HALVINGS, ORDER_TOLERANCE, REFERENCE_RUNGS,
+    STALL_ORDER,
+};
 
 /// The verdict on a ladder, why, and what to change when inconclusive.
 pub(crate) struct Judgement {
@@ -47,6 +51,9 @@ pub(crate) fn judge(
     end: LadderEnd,
     scale: f64,
 ) -> Judgement {
+    if let Some(stalled) = analysis.choice.clean.and_then(|(a, b)| stall(rungs, a, b)) {
+        return Judgement::fail(stalled, None);
+    }
     let reduction = analysis
         .choice
         .clean
@@ -248,6 +255,68 @@ fn converges_elsewhere(rungs: &[Rung], scale: f64) -> Option<String> {
     })
 }
 
+/// A stall: over the finest clean rungs the error stops falling, at a
+/// level far above the round-off those rungs carry (they are clean: their
+/// round-off bound is a small fraction of their error).
+///
+/// Every claim is an order of at least 1, and a convergent scheme's error
+/// falls at least like `h` once asymptotic, so over [`MIN_WINDOW_HALVINGS`]
+/// halvings it falls at least fourfold; round-off cannot hold it up on clean
+/// rungs. An error that does not fall is a bias of the scheme: a step
+/// rounded to `f32`, a coefficient or a force off by a constant. The stall
+/// is the longest run of clean rungs at the fine end, spanning at least
+/// [`MIN_WINDOW_HALVINGS`] halvings, over which the error falls slower than
+/// `h^s`, `s =` [`STALL_ORDER`] (halfway between order 0 and order 1), by
+/// two measures: the least-squares slope of `ln e` on `ln h`, whose 95%
+/// interval lies wholly below `s`, and the medians of its coarser and finer
+/// halves, which differ by less than an order-`s` fall between them. The
+/// slope alone could be dragged down by one rung in a cancellation of the
+/// leading error term (a deep dip at the coarse end of the run); the
+/// medians are not moved by one rung, and past a cancellation a correct
+/// scheme's error falls again at its order.
+fn stall(rungs: &[Rung], a: usize, b: usize) -> Option<String> {
+    let points: Vec<(f64, f64, f64)> = rungs[a..=b]
+        .iter()
+        .filter_map(|r| Some((r.h, r.error?, r.round_off_bound.unwrap_or(0.0))))
+        .filter(|&(_, e, _)| e > 0.0 && e.is_finite())
+        .collect();
+    let finest_h = points.last()?.0;
+    // the coarsest start whose run to the fine end falls slower than h^1
+    (0..points.len()).find_map(|start| {
+        let run = &points[start..];
+        let halvings = (run[0].0 / finest_h).log2();
+        if run.len() < MIN_WINDOW || halvings < MIN_WINDOW_HALVINGS {
+            return None;
+        }
+        let line = power_law(&run.iter().map(|&(h, e, _)| (h, e)).collect::<Vec<_>>())?;
+        let half = run.len() / 2;
+        let median = |part: &[(f64, f64, f64)]| {
+            (
+                median_of(part.iter().map(|p| p.0.ln()).collect()).exp(),
+                median_of(part.iter().map(|p| p.1).collect()),
+            )
+        };
+        let ((h1, e1), (h2, e2)) = (median(&run[..half]), median(&run[half..]));
+        // a fall at STALL_ORDER from the coarser half's median to the finer's
+        let falls = e2 < e1 * (h2 / h1).powf(STALL_ORDER);
+        (line.ci95[1] < STALL_ORDER && !falls).then(|| {
+            let round_off = run.iter().map(|p| p.2).fold(0.0, f64::max);
+            format!(
+                "the error stops falling: from h = {:.3e} to {finest_h:.3e} ({} clean rungs, \
+                 {halvings:.1} halvings) it falls only at order {:.2} in [{:.2}, {:.2}] and \
+                 ends near {e2:.3e} (median of the finer half), while round-off there is at \
+                 most {round_off:.1e}: the scheme carries an error that does not shrink with \
+                 the step (a step, a coefficient or a force rounded or off by a constant)",
+                run[0].0,
+                run.len(),
+                line.slope,
+                line.ci95[0],
+                line.ci95[1]
+            )
+        })
+    })
+}
+
 /// The limit the finest [`REFERENCE_RUNGS`] local orders of the window
 /// `a..=b` head for, when they rise steadily towards the claim: each above
 /// the last by less than the one before (a trend `l = p + c h` on a ladder
@@ -341,4 +410,77 @@ pub fn local_order_limit(fine: &[f64]) -> Option<f64> {
         return Some(l3 + d2 * r / (1.0 - r));
     }
     (d1 <= 0.0 && d2 <= 0.0).then_some(l3)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run::Outcome;
+
+    /// A halving ladder at two rungs a halving with errors `error(h)` and a
+    /// round-off bound far below them.
+    fn ladder(error: impl Fn(f64) -> f64) -> Vec<Rung> {
+        (0..30)
+            .map(|k| {
+                let h = 0.1 * 2f64.powf(-(k as f64) / 2.0);
+                Rung {
+                    h,
+                    steps: (10.0 / h).round() as u64,
+                    error: Some(error(h)),
+                    final_error: None,
+                    half_step_difference: None,
+                    round_off_sample: Some(1e-15),
+                    round_off_bound: Some(1e-15),
+                    local_order: None,
+                    used: false,
+                    dropped: None,
+                    outcome: Outcome::Completed,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn an_error_held_up_by_a_bias_is_a_stall() {
+        // h^2 down to a floor of 1e-8 with a wobble of a factor 6 between
+        // neighbouring rungs, as a step rounded to f32 gives
+        let rungs =
+            ladder(|h| 0.5 * h * h + 1e-8 * (1.0 + 5.0 * ((1.0 / h).ln() * 7.0).sin().abs()));
+        let found = stall(&rungs, 0, rungs.len() - 1).expect("a stall");
+        assert!(found.contains("stops falling"), "{found}");
+        assert!(found.contains("1.0e-15"), "{found}");
+    }
+
+    #[test]
+    fn first_order_convergence_is_no_stall() {
+        // order 1 with a small wobble: the fit's interval may dip below 1
+        let rungs = ladder(|h| h * (1.0 + 0.02 * ((1.0 / h).ln() * 5.0).sin()));
+        assert_eq!(stall(&rungs, 0, rungs.len() - 1), None);
+        // and a slow order-1 fall with a settling correction
+        let rungs = ladder(|h| h * (1.0 + 3.0 * h));
+        assert_eq!(stall(&rungs, 0, rungs.len() - 1), None);
+    }
+
+    #[test]
+    fn a_cancellation_of_the_leading_term_is_no_stall() {
+        // e = |h^2 - 400 h^4|: a zero near h = 0.05, then order 2 again
+        let rungs = ladder(|h| (h * h - 400.0 * h.powi(4)).abs().max(1e-14));
+        assert_eq!(stall(&rungs, 0, rungs.len() - 1), None);
+        // a cancellation two halvings before the finest rung
+        let h0 = 0.1 * 2f64.powf(-13.5);
+        let rungs = ladder(|h| (h * h * (1.0 - (h / h0).powi(2))).abs().max(1e-300));
+        assert_eq!(stall(&rungs, 0, rungs.len() - 1), None);
+    }
+
+    #[test]
+    fn a_floor_reached_only_at_the_fine_end_is_not_yet_a_stall() {
+        // h^2 meets a constant at the third-finest rung: too few halvings
+        // past it to tell a floor from a slowing fall
+        let floor = 0.01 * 2f64.powi(-27);
+        let rungs = ladder(|h| h * h + floor);
+        assert_eq!(stall(&rungs, 0, rungs.len() - 1), None);
+        // the same constant met five halvings earlier is a stall
+        let rungs = ladder(|h| h * h + 1e-8);
+        assert!(stall(&rungs, 0, rungs.len() - 1).is_some());
+    }
 }
