@@ -250,7 +250,7 @@ mod tests {
     fn a_change_that_tends_to_a_constant_fails() {
         let record = judge_invariant(
             Invariant::Momentum { axis: 0 },
-            &ladder(|h| 1e-9 + h * h, |h| 0.75 * h * h),
+            &ladder(|h| 1e-7 + h * h, |h| 0.75 * h * h),
             Some(1.98),
         );
         assert_eq!(record.verdict, Verdict::Fail, "{}", record.reason);
@@ -263,7 +263,7 @@ mod tests {
         // only the finest rung exceeds: a chance sample, not a limit
         let record = judge_invariant(
             Invariant::Energy,
-            &ladder(|h| if h < 1e-4 { 1e-3 } else { 0.0 }, |h| 0.75 * h * h),
+            &ladder(|h| if h < 3e-5 { 1e-3 } else { 0.0 }, |h| 0.75 * h * h),
             Some(2.0),
         );
         assert_eq!(record.verdict, Verdict::Pass, "{}", record.reason);
