@@ -290,6 +290,28 @@ pub const STABILITY_SLACK_EPS_PER_EVALUATION: f64 = 32.0;
 /// Width to which each stability boundary is bisected, in `z = h w0`.
 pub const STABILITY_BISECTION: f64 = 1e-10;
 
+/// How many times its round-off bound (the stability slack above, times the
+/// products of the map's entries) `det M(z) - 1` must be before its value,
+/// not only its sign, counts as measured: its relative error is then at most
+/// `1/64`, a growth figure is good to two digits, and the slope of
+/// `ln(det - 1)` against `ln z` over a factor 2 of `z` errs by at most
+/// `2 / (64 ln 2) = 0.045`, a fifth of [`GROWTH_POWER_TOLERANCE`]. Below it a
+/// growth is either inferred from the fitted law or reported unresolved.
+pub const GROWTH_VALUE_RESOLUTION: f64 = 64.0;
+
+/// Largest distance from an integer `k` of the slopes of `ln(det M(z) - 1)`
+/// against `ln z` over each half (a factor 2 of `z`) of the window where a
+/// map's growth is first measured. `det - 1` of a one-step map on the
+/// oscillator is a function of `z` whose series starts `c z^k (1 + a z^2 + ..)`,
+/// with slope `k + 2 a z^2 + O(z^4)`. Round-off takes at most 0.045 of the
+/// quarter; the rest lets the next term move the slope by up to 0.2 at the
+/// window's top (`4` times its bottom `z_F`), so `|a| z_F^2 <= 1/160`: from
+/// the bottom down to `z -> 0` the leading term carries `det - 1` to within
+/// 1%, which is what inferring the growth below round-off needs. A genuine
+/// boundary, a simple zero of `det - 1` at `z*`, has slope `z/(z - z*)`,
+/// which changes by far more than this across a factor 2 above it.
+pub const GROWTH_POWER_TOLERANCE: f64 = 0.25;
+
 // Round-off studies (`measure::roundoff::floor`, `measure::roundoff::longrun`).
 
 /// The round-off component of a plain scheme's error is fitted against the

@@ -197,7 +197,9 @@ pub fn energy(scene: &str, records: &[&EnergyRecord]) -> Result<String, std::io:
     )
 }
 
-/// The stability limit per force evaluation, one bar per scheme.
+/// The stability limit per force evaluation, one bar per scheme; where there
+/// is no bar, a word says whether the scheme is stable at every step (`no
+/// limit`) or at none (`0`).
 pub fn stability(records: &[StabilityRecord]) -> Result<String, std::io::Error> {
     let bars: Vec<(&str, f64)> = records
         .iter()
@@ -228,7 +230,7 @@ pub fn stability(records: &[StabilityRecord]) -> Result<String, std::io::Error> 
             .disable_x_mesh()
             .x_labels(bars.len())
             .x_label_formatter(&|i| bars.get(*i).map_or(String::new(), |b| b.0.to_string()))
-            .y_desc("stable h w0 per evaluation (unbounded: none drawn)")
+            .y_desc("stable h w0 per evaluation")
             .draw()
             .map_err(drawing)?;
         chart
@@ -238,6 +240,19 @@ pub fn stability(records: &[StabilityRecord]) -> Result<String, std::io::Error> 
                     .filter(|(_, b)| b.1.is_finite())
                     .map(|(i, b)| Rectangle::new([(i, 0.0), (i + 1, b.1)], colour(i).filled())),
             )
+            .map_err(drawing)?;
+        // no bar for two opposite reasons: say which
+        chart
+            .draw_series(bars.iter().enumerate().filter_map(|(i, b)| {
+                let word = if b.1.is_nan() {
+                    "no limit"
+                } else if b.1 == 0.0 {
+                    "0"
+                } else {
+                    return None;
+                };
+                Some(Text::new(word, (i, 0.02 * top), ("sans-serif", 11)))
+            }))
             .map_err(drawing)?;
         root.present().map_err(drawing)?;
     }

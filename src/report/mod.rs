@@ -26,7 +26,7 @@ use crate::measure::Verdict;
 use crate::measure::accuracy::order::OrderRecord;
 use crate::measure::accuracy::phase::PhaseRecord;
 use crate::measure::accuracy::scene_check::SceneCheck;
-use crate::measure::stability::StabilityRecord;
+use crate::measure::stability::{GROWTH_AT, GrowthSource, StabilityRecord};
 use crate::scene::AnyScene;
 use crate::scheme::catalogue;
 use crate::suite::{CaseRecords, SuiteRecords};
@@ -146,26 +146,24 @@ fn geometry_section(records: &SuiteRecords) -> String {
     out
 }
 
-/// Linear stability limits, in a table and per force evaluation.
+/// Linear stability limits, in a table and per force evaluation, with the
+/// growth of the maps unstable at every step.
 fn stability_section(records: &SuiteRecords) -> String {
     let mut out = String::new();
     out.push_str("\n## Linear stability\n\n");
+    out.push_str(&stability_definitions());
     out.push_str(
-        "The largest `z = h w0` up to which the one-step map on the oscillator stays \
-         power-bounded (spectral radius <= 1), measured from each scheme's own step and \
-         bisected to 1e-10; every stable interval found on a scan to `z = 1e6`; and the \
-         limit per force evaluation, the stable step a unit of work buys. `none` means \
-         stable for every step scanned. A multistep scheme's state is its whole window, so \
-         its stability is read off the roots of its recurrence on the oscillator, \
-         `rho(x) + z^2 sigma(x)`, instead: a symmetric method's roots stay on the unit \
-         circle until the root that carries the motion meets a spurious one, a resonance, \
-         where two of them leave it. That is far below the limit of a one-step method of \
-         the same order, and on an eccentric orbit, whose force carries every harmonic of \
-         the orbital frequency, a resonance can be met at steps the oscillator allows (the \
-         energy table shows such an orbit lost).\n\n",
+        "A multistep scheme's state is its whole window, so its stability is read off the \
+         roots of its recurrence on the oscillator, `rho(x) + z^2 sigma(x)`, instead: a \
+         symmetric method's roots stay on the unit circle until the root that carries the \
+         motion meets a spurious one, a resonance, where two of them leave it. That is far \
+         below the limit of a one-step method of the same order, and on an eccentric orbit, \
+         whose force carries every harmonic of the orbital frequency, a resonance can be met \
+         at steps the oscillator allows (the energy table shows such an orbit lost).\n\n",
     );
     out.push_str(&stability_table(&records.stability));
-    let labels: Vec<&str> = records.stability.iter().map(|r| r.scheme).collect();
+    let labels: Vec<String> = records.stability.iter().map(limit_label).collect();
+    let labels: Vec<&str> = labels.iter().map(String::as_str).collect();
     let per_evaluation: Vec<f64> = records
         .stability
         .iter()
@@ -178,8 +176,55 @@ fn stability_section(records: &SuiteRecords) -> String {
         "h w0 per evaluation",
         &per_evaluation,
     ));
-    out.push_str("A scheme stable for every step (no limit) has no bar.\n");
+    out.push_str(
+        "A scheme stable for every step (no limit) and one unstable at every step (limit 0) \
+         both have no bar; their labels tell them apart.\n",
+    );
     out
+}
+
+/// What the stability table's words and columns mean.
+fn stability_definitions() -> String {
+    format!(
+        "`M(z)` is the one-step map of a scheme on the oscillator `x'' = -w0^2 x` at \
+         `z = h w0`, measured from the scheme's own step; `rho(z)` its spectral radius.\n\n\
+         - **Stable at `z`**: Jury's conditions `det M <= 1` and `|trace M| <= 1 + det M` \
+         hold to within the round-off of the stepped map ({slack} eps per force evaluation, \
+         times the size of the determinant's two products). In double precision that means \
+         *no growth resolvable*: a growth per step `rho - 1` below the round-off (about \
+         {slack_half} eps per force evaluation at small `z`, the last column) is not seen.\n\
+         - **Stability limit**: the largest `z` up to which every step is stable, bisected to \
+         {bisection:e}; `none`: stable at every `z` scanned (to `1e6`); `0`: unstable at \
+         every `z > 0`. The stable intervals are every stable stretch of the scan; the limit \
+         per force evaluation is the stable step a unit of work buys.\n\
+         - **Unstable at every step**: where `det M - 1` is first measured ({resolution} \
+         times its round-off) it is positive and follows `c z^k` (log-slope within \
+         {power} of an integer over a factor 4 of `z`), so its leading term keeps it \
+         positive down to `z -> 0`. **Weakly unstable**: such a map whose growth is below \
+         round-off at small `z`, where a scan sees a stable interval that ends only where \
+         the growth crosses the round-off bound (`unresolved below` in the second table); \
+         its limit is 0, not that crossing.\n\
+         - **Growth** (second table, each cell *per step / per period*): `rho(z) - 1` per \
+         step and `rho(z)^(2 pi / z) - 1` per period of the oscillator, measured from the stepped map where `det M - 1` is \
+         {resolution} times its round-off; *law*: below that, under the fit window, from \
+         `c z^k` (`rho - 1 = sqrt(1 + c z^k) - 1`); *unresolved*: below it and above the \
+         window, where the law does not reach.\n\n",
+        slack = tolerance::STABILITY_SLACK_EPS_PER_EVALUATION,
+        slack_half = tolerance::STABILITY_SLACK_EPS_PER_EVALUATION / 2.0,
+        bisection = tolerance::STABILITY_BISECTION,
+        resolution = tolerance::GROWTH_VALUE_RESOLUTION,
+        power = tolerance::GROWTH_POWER_TOLERANCE,
+    )
+}
+
+/// A scheme's label in the stability chart: its id, and what a missing bar
+/// means.
+fn limit_label(r: &StabilityRecord) -> String {
+    match r.stability_limit {
+        None => format!("{} (no limit)", r.scheme),
+        Some(0.0) => format!("{} (unstable)", r.scheme),
+        Some(_) => r.scheme.to_string(),
+    }
 }
 
 /// The Earth-Sun experiments, the hard cases, work-precision, round-off and the appendix.
@@ -350,13 +395,15 @@ pub fn phase_table(records: &[PhaseRecord]) -> String {
     t.render()
 }
 
-/// The stability table, one row per scheme.
+/// The stability table, one row per scheme, and the growth of every map
+/// unstable at every step, one row per such scheme.
 pub fn stability_table(records: &[StabilityRecord]) -> String {
     let mut t = Table::new(&[
         "scheme",
         "stability limit",
         "per force evaluation",
         "stable intervals",
+        "growth resolution per step",
     ]);
     let limit = |z: Option<f64>| z.map_or("none".into(), |z| format!("{z:.6}"));
     for r in records {
@@ -371,16 +418,77 @@ pub fn stability_table(records: &[StabilityRecord]) -> String {
                 )
             })
             .collect();
+        let verdict = if r.weakly_unstable() {
+            " (weakly unstable)"
+        } else if r.growth.is_some() {
+            " (unstable)"
+        } else {
+            ""
+        };
         t.row(vec![
             format!("`{}`", r.scheme),
-            limit(r.stability_limit),
+            format!("{}{verdict}", limit(r.stability_limit)),
             limit(r.limit_per_force_evaluation),
             if intervals.is_empty() {
                 "-".into()
             } else {
                 intervals.join(" ")
             },
+            opt(r.growth_resolution, sci),
         ]);
+    }
+    let mut out = t.render();
+    if records.iter().any(|r| r.growth.is_some()) {
+        out.push('\n');
+        out.push_str(&growth_table(records));
+    }
+    out
+}
+
+/// The growth law and the growth per step and per period at
+/// [`GROWTH_AT`] of every map unstable at every step.
+fn growth_table(records: &[StabilityRecord]) -> String {
+    let mut header = vec![
+        "scheme".to_string(),
+        "det M - 1".to_string(),
+        "fit window".to_string(),
+        "unresolved below".to_string(),
+    ];
+    header.extend(GROWTH_AT.iter().map(|z| format!("z = {z}")));
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut t = Table::new(&header);
+    for r in records {
+        let Some(g) = &r.growth else { continue };
+        let mut row = vec![
+            format!("`{}`", r.scheme),
+            format!(
+                "({} -+ {}) z^{} (slope {:.3})",
+                sci(g.coefficient),
+                sci(g.coefficient_round_off),
+                g.power,
+                g.power_fitted
+            ),
+            format!("[{}, {}]", sci(g.window[0]), sci(g.window[1])),
+            opt(g.unresolved_below, |z| format!("{z:.6}")),
+        ];
+        row.extend(GROWTH_AT.iter().map(|z| {
+            g.at.iter()
+                .find(|a| a.z == *z)
+                .map_or("no step".into(), |a| {
+                    match (a.source, a.per_step, a.per_period) {
+                        (GrowthSource::Unresolved, ..) | (_, None, _) | (_, _, None) => {
+                            "unresolved".into()
+                        }
+                        (GrowthSource::Law, Some(s), Some(p)) => {
+                            format!("{} / {} (law)", sci(s), sci(p))
+                        }
+                        (GrowthSource::Measured, Some(s), Some(p)) => {
+                            format!("{} / {}", sci(s), sci(p))
+                        }
+                    }
+                })
+        }));
+        t.row(row);
     }
     t.render()
 }

@@ -361,3 +361,9 @@ impl Parameters {
 pub fn scene_ids() -> Vec<&'static str> {
     AnyScene::all().iter().map(|s| s.meta().id).collect()
 }
+
+mod nbody;
+mod outer_solar_system;
+mod pleiades;
+pub use outer_solar_system::OuterSolarSystem;
+pub use pleiades::Pleiades;
