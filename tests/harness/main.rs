@@ -13,6 +13,7 @@ mod figures;
 mod geometry;
 mod hard;
 mod implicit;
+mod nbody;
 mod nystrom_conditions;
 mod order;
 mod order_conditions;

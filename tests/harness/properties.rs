@@ -252,3 +252,426 @@ proptest! {
         }
     }
 }
+
+// ---------------------------------------------------------------------------
+// Units never change a verdict.
+//
+// A scene in units of length `L` and time `T` times smaller
+// (`stepladder::scene::Scaled::units`) is the same motion, and every scheme
+// here is the same map on it when its step is measured in the same units
+// (`h' v' = L h v`, `h'^2 a' = L h^2 a`). Every threshold of the studies is
+// meant to be unit-free, so two things follow:
+//
+// - With `L` and `T` powers of two every operation of every run is the same
+//   operation on numbers that differ by an exact power of two, so the runs
+//   are the same bit for bit: each rung's error is exactly `L` times the
+//   original, relative energy errors, tangent-map residuals and return
+//   errors in ulps are identical. Any difference in a verdict, a window or
+//   a drop is then a threshold that depends on the units, with nothing
+//   else to blame.
+// - With any other `L` and `T` the runs differ by round-off only (every
+//   number is rounded anew; the wrapper itself adds a rounding or two to each
+//   force and state). Verdicts must agree, and each measured order must lie
+//   inside the other's 95% interval: the interval is the study's own
+//   statement of how far round-off and the choice of window can move its
+//   estimate (never narrower than `ORDER_RESOLUTION` either side), and a
+//   rerun that differs only in rounding lands outside it only if that
+//   statement is too narrow.
+// ---------------------------------------------------------------------------
+
+use stepladder::measure::Verdict;
+use stepladder::measure::accuracy::order::OrderRecord;
+use stepladder::measure::case::case;
+use stepladder::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
+use stepladder::measure::geometry::reverse::ReverseRecord;
+use stepladder::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+use stepladder::scene::{Anharmonic, AnyScene, KeplerCircular, KeplerEccentric, Scaled};
+use stepladder::tolerance::ORDER_RESOLUTION;
+
+/// The four verdicts of one scheme on one scene, with their records.
+#[derive(Clone, Debug)]
+struct Verdicts {
+    order: OrderRecord,
+    energy: EnergyRecord,
+    symplectic: SymplecticRecord,
+    reverse: ReverseRecord,
+}
+
+/// Every study at its defaults.
+fn verdicts<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> Verdicts {
+    Verdicts {
+        order: global_order(scheme, scene, &OrderSpec::default()).expect("the order study runs"),
+        energy: energy_drift(scheme, scene, &EnergySpec::default()).expect("the energy study runs"),
+        symplectic: symplecticity(scheme, scene, &SymplecticSpec::default())
+            .expect("the symplecticity study runs"),
+        reverse: reversibility(scheme, scene, &ReverseSpec::default())
+            .expect("the reversibility study runs"),
+    }
+}
+
+/// The records in the scene's own units, computed once per scheme and scene
+/// for all the draws of a property.
+fn original<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> Verdicts {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    static CACHE: OnceLock<Mutex<HashMap<String, Verdicts>>> = OnceLock::new();
+    let meta = scene.meta();
+    let key = format!("{} on {} ({})", scheme.meta().id, meta.id, meta.parameters);
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(found) = cache.lock().unwrap().get(&key) {
+        return found.clone();
+    }
+    let computed = verdicts(scheme, scene);
+    cache.lock().unwrap().insert(key, computed.clone());
+    computed
+}
+
+/// The two order records agree as two roundings of one run must: the same
+/// verdict, and each measured order inside the other's interval.
+fn same_order(a: &OrderRecord, b: &OrderRecord) -> Result<(), String> {
+    let what = format!("{} on {}", a.scheme, a.scene);
+    if a.verdict != b.verdict {
+        return Err(format!(
+            "{what}: order verdict {:?} ({}) became {:?} ({})",
+            a.verdict, a.reason, b.verdict, b.reason
+        ));
+    }
+    match (a.measured_order.zip(a.ci95), b.measured_order.zip(b.ci95)) {
+        (Some((p, [lo, hi])), Some((q, [lo2, hi2]))) => {
+            if !(lo2..=hi2).contains(&p) || !(lo..=hi).contains(&q) {
+                return Err(format!(
+                    "{what}: order {p} in [{lo}, {hi}] became {q} in [{lo2}, {hi2}]"
+                ));
+            }
+        }
+        (None, None) => {}
+        (x, y) => return Err(format!("{what}: order {x:?} became {y:?}")),
+    }
+    Ok(())
+}
+
+/// Same verdicts from every study, same orders within their intervals.
+fn same_verdicts(a: &Verdicts, b: &Verdicts) -> Result<(), String> {
+    same_order(&a.order, &b.order)?;
+    let what = format!("{} on {}", a.order.scheme, a.order.scene);
+    let pairs = [
+        (
+            "energy",
+            a.energy.verdict,
+            b.energy.verdict,
+            &a.energy.reason,
+            &b.energy.reason,
+        ),
+        (
+            "symplecticity",
+            a.symplectic.verdict,
+            b.symplectic.verdict,
+            &a.symplectic.reason,
+            &b.symplectic.reason,
+        ),
+        (
+            "reversibility",
+            a.reverse.verdict,
+            b.reverse.verdict,
+            &a.reverse.reason,
+            &b.reverse.reason,
+        ),
+    ];
+    for (study, x, y, why_x, why_y) in pairs {
+        if x != y {
+            return Err(format!(
+                "{what}: {study} verdict {x:?} ({why_x}) became {y:?} ({why_y})"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The records of one run and of the same run in units `length`, `time`,
+/// both powers of two: every measured number is the original's, scaled by
+/// its dimension exactly.
+///
+/// The one exception is the fitted order: the fit sees `ln h` and `ln e`
+/// shifted by the constants `ln T` and `ln L`, which its intercept absorbs
+/// in exact arithmetic, and its corrections use `h / H`, which does not
+/// change; in doubles every logarithm carries one extra rounding, at most
+/// `eps |ln x|` < 1.4e-14 for the `|ln x| < 60` of these runs, and the order
+/// is a combination of them with weights summing in modulus to at most a few
+/// hundred (windows of six or more rungs spanning two halvings of `h`), so it
+/// moves by 1e-11 at most. 1e-9 is a hundred times that, and far below what
+/// any changed decision (a rung dropped or kept, a window moved) moves it by.
+fn same_numbers(a: &Verdicts, b: &Verdicts, length: f64, time: f64) -> Result<(), String> {
+    same_verdicts(a, b)?;
+    let what = format!(
+        "{} on {} in units x {length:e}, x {time:e}",
+        a.order.scheme, a.order.scene
+    );
+    let (oa, ob) = (&a.order, &b.order);
+    let scaled = |x: Option<f64>| x.map(|x| x * length);
+    let rungs_agree = oa.rungs.len() == ob.rungs.len()
+        && oa.rungs.iter().zip(&ob.rungs).all(|(x, y)| {
+            x.steps == y.steps
+                && scaled(x.error) == y.error
+                && scaled(x.round_off_sample) == y.round_off_sample
+                && x.dropped == y.dropped
+                && x.used == y.used
+        });
+    if !rungs_agree || oa.window != ob.window || oa.t_end * time != ob.t_end {
+        return Err(format!(
+            "{what}: the order study's rungs differ: {:?} over {:?} against {:?} over {:?}",
+            oa.window,
+            oa.rungs
+                .iter()
+                .map(|r| (r.steps, r.error, r.dropped))
+                .collect::<Vec<_>>(),
+            ob.window,
+            ob.rungs
+                .iter()
+                .map(|r| (r.steps, r.error.map(|e| e / length), r.dropped))
+                .collect::<Vec<_>>(),
+        ));
+    }
+    if let (Some(p), Some(q)) = (oa.measured_order, ob.measured_order)
+        && (p - q).abs() > 1e-9
+    {
+        return Err(format!("{what}: order {p} became {q}"));
+    }
+    let (ea, eb) = (&a.energy, &b.energy);
+    if ea.h * time != eb.h
+        || ea.steps != eb.steps
+        || ea.max_relative_energy_error != eb.max_relative_energy_error
+        || ea.class != eb.class
+    {
+        return Err(format!(
+            "{what}: energy at h = {}, {} steps, {:e} ({:?}) became h = {}, {} steps, {:e} ({:?})",
+            ea.h,
+            ea.steps,
+            ea.max_relative_energy_error,
+            ea.class,
+            eb.h / time,
+            eb.steps,
+            eb.max_relative_energy_error,
+            eb.class
+        ));
+    }
+    let (sa, sb) = (&a.symplectic, &b.symplectic);
+    if sa.symplectic_residual != sb.symplectic_residual || sa.det_minus_one != sb.det_minus_one {
+        return Err(format!(
+            "{what}: symplectic residual {:e} became {:e}",
+            sa.symplectic_residual, sb.symplectic_residual
+        ));
+    }
+    let (ra, rb) = (&a.reverse, &b.reverse);
+    if ra.return_ulps != rb.return_ulps || ra.growth != rb.growth {
+        return Err(format!(
+            "{what}: return {:?} ulps (growth {}) became {:?} (growth {})",
+            ra.return_ulps, ra.growth, rb.return_ulps, rb.growth
+        ));
+    }
+    Ok(())
+}
+
+/// One scheme's verdicts on `scene` and on `scene` in units `length`,
+/// `time`: the same bit for bit when `exact` (powers of two), the same
+/// verdicts and orders otherwise.
+struct Units<'a, S, const D: usize> {
+    scene: &'a S,
+    length: f64,
+    time: f64,
+    exact: bool,
+}
+
+impl<S: Scene<D> + Clone, const D: usize> SchemeVisitor for &Units<'_, S, D> {
+    type Output = Result<(), String>;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output {
+        let before = original(scheme, self.scene);
+        let rescaled =
+            Scaled::units(self.scene.clone(), self.length, self.time).map_err(|e| e.to_string())?;
+        let after = verdicts(scheme, &rescaled);
+        if self.exact {
+            same_numbers(&before, &after, self.length, self.time)
+        } else {
+            same_verdicts(&before, &after)
+        }
+    }
+}
+
+/// Runs `check` on the four schemes of the unit properties (a first-order
+/// non-geometric scheme, the second-order symplectic one, a fourth-order
+/// non-symplectic and a fourth-order symplectic composition) on one of two
+/// scenes (a nonlinear oscillator near nothing special, and an eccentric
+/// orbit whose pericentre every ladder must resolve).
+fn on_unit_scenes(scene: usize, length: f64, time: f64, exact: bool) -> Result<(), String> {
+    for id in ["euler", "velocity-verlet", "rk4", "forest-ruth"] {
+        match scene {
+            0 => visit_scheme(
+                id,
+                &Units {
+                    scene: &Anharmonic::default(),
+                    length,
+                    time,
+                    exact,
+                },
+            ),
+            _ => visit_scheme(
+                id,
+                &Units {
+                    scene: &KeplerEccentric::default(),
+                    length,
+                    time,
+                    exact,
+                },
+            ),
+        }
+        .map_err(|e| e.to_string())??;
+    }
+    Ok(())
+}
+
+/// Cases per unit property: 8 (each runs every study on four schemes, about
+/// a second), or `PROPTEST_CASES` when set.
+fn unit_cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(8)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        max_shrink_iters: 16,
+        ..ProptestConfig::with_cases(unit_cases())
+    })]
+
+    /// Units of length and time that are powers of two, over twelve decades
+    /// each: the same runs bit for bit, so the same records.
+    #[test]
+    fn power_of_two_units_give_the_same_records_bit_for_bit(
+        length_exponent in -20i32..=20,
+        time_exponent in -20i32..=20,
+        scene in 0usize..2,
+    ) {
+        let (length, time) = (2f64.powi(length_exponent), 2f64.powi(time_exponent));
+        let checked = on_unit_scenes(scene, length, time, true);
+        prop_assert!(checked.is_ok(), "{}", checked.unwrap_err());
+    }
+
+    /// Any units of length and time from 1e-6 to 1e6: the same verdicts from
+    /// all four studies and the same orders within their intervals.
+    #[test]
+    fn any_units_give_the_same_verdicts_and_orders(
+        log_length in -6.0f64..6.0,
+        log_time in -6.0f64..6.0,
+        scene in 0usize..2,
+    ) {
+        let (length, time) = (10f64.powf(log_length), 10f64.powf(log_time));
+        let checked = on_unit_scenes(scene, length, time, false);
+        prop_assert!(checked.is_ok(), "{}", checked.unwrap_err());
+    }
+}
+
+/// The Earth's circular orbit in metres and seconds (1 AU = 1.495978707e11 m,
+/// a Julian year of 3.15576e7 s; `GM` becomes 1.32716e20 m^3/s^2, the
+/// Sun's 1.32712440018e20 to the 3e-5 by which the idealised orbit's year is
+/// not the Julian one) gets the verdicts it gets in astronomical units and
+/// years, for every scheme of the catalogue and all four studies.
+#[test]
+fn the_earth_in_metres_and_seconds_gets_the_verdicts_of_au_and_years() {
+    let (au, year) = (1.495978707e11, 3.15576e7);
+    let failures: Vec<String> = scheme_ids()
+        .into_iter()
+        .filter_map(|id| {
+            let check = Units {
+                scene: &KeplerCircular,
+                length: au,
+                time: year,
+                exact: false,
+            };
+            visit_scheme(id, &check).unwrap().err()
+        })
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The oscillator at `w0 = 1000` is the `w0 = 1` oscillator with time in
+/// units of 1/1000: every catalogue scheme's order verdict must be the same,
+/// with orders inside each other's intervals, whether `w0` is the scene's
+/// own parameter or the wrapper's unit of time. At `w0 = 1024` the two are
+/// the same runs bit for bit (velocities and times scale by powers of two),
+/// so the order study must find the same rungs, window and order.
+#[test]
+fn the_oscillator_at_w0_1000_gets_the_order_verdicts_of_w0_1() {
+    let slow = AnyScene::Harmonic(Harmonic::default());
+    let order = |id: &str, scene: &AnyScene| {
+        case(id, scene)
+            .unwrap()
+            .order(&OrderSpec::default())
+            .unwrap()
+    };
+    /// The order record of the `w0 = 1` oscillator in time units `time`.
+    struct InTimeUnits(f64);
+    impl SchemeVisitor for &InTimeUnits {
+        type Output = OrderRecord;
+        fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> OrderRecord {
+            let fast = Scaled::units(Harmonic::default(), 1.0, self.0).unwrap();
+            global_order(scheme, &fast, &OrderSpec::default()).unwrap()
+        }
+    }
+    let mut failures = Vec::new();
+    for id in scheme_ids() {
+        let base = order(id, &slow);
+        let direct = order(
+            id,
+            &AnyScene::Harmonic(Harmonic::new(1000.0, 1.0, 0.0).unwrap()),
+        );
+        let rescaled = visit_scheme(id, &InTimeUnits(1e-3)).unwrap();
+        failures.extend(same_order(&base, &direct).err());
+        failures.extend(same_order(&base, &rescaled).err());
+        let twin = order(
+            id,
+            &AnyScene::Harmonic(Harmonic::new(1024.0, 1.0, 0.0).unwrap()),
+        );
+        let same = base.rungs.len() == twin.rungs.len()
+            && base
+                .rungs
+                .iter()
+                .zip(&twin.rungs)
+                .all(|(x, y)| x.steps == y.steps && x.error == y.error)
+            && base.window == twin.window
+            && base
+                .measured_order
+                .zip(twin.measured_order)
+                .is_none_or(|(p, q)| (p - q).abs() <= 1e-9);
+        if !same || base.verdict != twin.verdict {
+            failures.push(format!(
+                "{id}: w0 = 1024 is not w0 = 1 bit for bit: {:?} {:?} over {:?} against {:?} {:?} over {:?}",
+                base.verdict, base.measured_order, base.window, twin.verdict, twin.measured_order, twin.window
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The comparison of orders above can fail: two orders `2 ORDER_RESOLUTION`
+/// apart, each with the narrowest interval the study reports (`-+
+/// ORDER_RESOLUTION`), are not the same order, and neither are two verdicts.
+#[test]
+fn orders_two_resolutions_apart_are_not_the_same() {
+    let mut base = global_order(
+        &VELOCITY_VERLET,
+        &Harmonic::default(),
+        &OrderSpec::default(),
+    )
+    .unwrap();
+    let p0 = base.measured_order.unwrap();
+    base.ci95 = Some(stepladder::tolerance::order_interval(p0, [p0, p0]));
+    let mut moved = base.clone();
+    let p = p0 + 2.0 * ORDER_RESOLUTION;
+    moved.measured_order = Some(p);
+    moved.ci95 = Some(stepladder::tolerance::order_interval(p, [p, p]));
+    assert!(same_order(&base, &moved).is_err());
+    let mut refuted = base.clone();
+    refuted.verdict = Verdict::Fail;
+    assert!(same_order(&base, &refuted).is_err());
+    assert!(same_order(&base, &base).is_ok());
+}
