@@ -71,9 +71,12 @@ pub fn assert_energy<M: Scheme, S: Scene<D>, const D: usize>(
     record
 }
 
-/// Checks the error constant against the pin in `dir` (see [`crate::measure::accuracy::pin`]),
-/// writing the pin if it is missing; panics if it moved beyond the pin's
-/// tolerance, or if the order study does not pass.
+/// Checks the error at the pinned step against the pin in `dir` (see
+/// [`crate::measure::accuracy::pin`]), writing the pin if it is missing;
+/// panics if the error moved by more than the pin's tolerance (four times
+/// the round-off the order study measured on that run, so a changed scheme
+/// fails and a reordering of its operations or another platform does not),
+/// if the pin is of an earlier format, or if the order study does not pass.
 pub fn assert_pinned<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
@@ -185,8 +188,9 @@ pub fn energy_failure(r: &EnergyRecord) -> Option<String> {
 }
 
 /// One `#[test]` per claim, per scheme and scene: `order`, `symplectic`,
-/// `reversible`, `energy` and `pinned` (the error constant, pinned in
-/// `snapshots/stepladder/` under the calling crate's root), in modules named
+/// `reversible`, `energy` and `pinned` (the error at a coarse step, pinned
+/// to its round-off in `snapshots/stepladder/` under the calling crate's
+/// root), in modules named
 /// after the scheme and the scene, so that `cargo test` lists
 /// `my_verlet::kepler_circular::order` and a failure names its claim.
 ///

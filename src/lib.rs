@@ -27,7 +27,7 @@
 //! - [`guard`]: one-line assertions of a scheme's claims for a downstream
 //!   crate's tests, with the deciding figures in the failure message, and
 //!   [`guard_claims!`], one `#[test]` per claim; [`measure::accuracy::pin`] pins the error
-//!   constant in the crate's own snapshot folder.
+//!   at a coarse step, to its round-off, in the crate's own snapshot folder.
 //! - [`scheme::BlackBox`] guards an integrator that only runs on `f64` or
 //!   `f32` (a step function on slices, from any crate);
 //!   [`scene::FromPotential`] makes a scene from a potential alone.

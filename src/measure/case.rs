@@ -29,7 +29,7 @@ pub trait Case: Send + Sync {
     fn symplectic(&self, spec: &SymplecticSpec) -> Result<SymplecticRecord, Error>;
     /// The forward-and-back study.
     fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error>;
-    /// The error-constant pin in `dir` ([`crate::measure::accuracy::pin::check_pin`]).
+    /// The error pin in `dir` ([`crate::measure::accuracy::pin::check_pin`]).
     fn pin(&self, dir: &std::path::Path) -> Result<PinOutcome, String>;
 }
 

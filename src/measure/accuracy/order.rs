@@ -162,7 +162,7 @@ impl OrderRecord {
 pub const COMPARISONS: u64 = 4096;
 
 /// The step numbers at which a rung of `steps` steps is compared.
-fn comparison_steps(steps: u64) -> impl Iterator<Item = u64> {
+pub(crate) fn comparison_steps(steps: u64) -> impl Iterator<Item = u64> {
     let count = steps.min(COMPARISONS);
     (0..=count).map(move |j| j * steps / count)
 }
