@@ -71,8 +71,9 @@ pub struct InvariantValue {
     pub sensitivity: f64,
 }
 
-/// The energy and its sensitivity: `dE = v . dv - a . dq = (w v) . (dv / w)
-/// - a . dq`, so by Cauchy-Schwarz `|dE| <= sqrt(w^2 |v|^2 + |a|^2) d`.
+/// The energy and its sensitivity:
+/// `dE = v . dv - a . dq = (w v) . (dv / w) - a . dq`, so by Cauchy-Schwarz
+/// `|dE| <= sqrt(w^2 |v|^2 + |a|^2) d`.
 pub fn energy<S: Scene<D> + ?Sized, const D: usize>(scene: &S, s: &State<D>) -> InvariantValue {
     let w = scene.frequency();
     let a = scene.acceleration(&s.q);

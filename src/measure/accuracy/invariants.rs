@@ -11,11 +11,11 @@
 //! solution) has, for an invariant `I` with sensitivity `S` (the norm of its
 //! gradient in the same metric), `|I(x_h(t)) - I(x(0))| = |I(x_h(t)) -
 //! I(x(t))| <= S e(t)` to first order, since `I(x(t)) = I(x(0))`. The run's
-//! global error is estimated from the half-step difference `d = max_t |x_h
-//! - x_(h/2)|`: in the asymptotic range `x_h - x = C h^p + ...`, so `d = (1 -
-//! 2^-p) e` and `e <= d / (1 - 2^-lo)` for an order in the fitted interval
-//! `[lo, hi]`. The change a solution of the scene's equations allows at a
-//! rung is therefore
+//! global error is estimated from the half-step difference
+//! `d = max_t |x_h - x_(h/2)|`: in the asymptotic range `x_h - x = C h^p +
+//! ...`, so `d = (1 - 2^-p) e` and `e <= d / (1 - 2^-lo)` for an order in
+//! the fitted interval `[lo, hi]`. The change a solution of the scene's
+//! equations allows at a rung is therefore
 //!
 //! ```text
 //! allowed = max_t S(t) * d / (1 - 2^-lo) + R(N)
