@@ -570,7 +570,7 @@ fn compare<M: Scheme, S: Scene<D>, const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Harmonic, KeplerCircular};
+    use crate::scene::{Harmonic, Hidden, KeplerCircular};
     use crate::scheme::{FOREST_RUTH, PEFRL, Rk4, VELOCITY_VERLET};
 
     fn dir(name: &str) -> PathBuf {
@@ -690,6 +690,31 @@ mod tests {
             PinOutcome::Agrees { .. }
         ));
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn the_pinned_error_is_the_order_studys_rung_error_against_either_reference() {
+        // with the exact solution withheld the error is the distance to the
+        // run at half the step, compared at the same times as the study's
+        let osc = Harmonic::default();
+        for hidden in [false, true] {
+            let record = if hidden {
+                global_order(&Rk4, &Hidden(&osc), &OrderSpec::default())
+            } else {
+                global_order(&Rk4, &osc, &OrderSpec::default())
+            }
+            .unwrap();
+            let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
+            assert!(rungs.len() > 5);
+            for r in rungs {
+                let pinned = if hidden {
+                    pinned_error(&Rk4, &Hidden(&osc), record.t_end, r.steps)
+                } else {
+                    pinned_error(&Rk4, &osc, record.t_end, r.steps)
+                };
+                assert_eq!(pinned, r.error, "{} steps, hidden {hidden}", r.steps);
+            }
+        }
     }
 
     #[test]
