@@ -2,7 +2,7 @@
 //! every step, and a blow-up detected as a measured outcome.
 
 use crate::scene::Scene;
-use crate::scheme::{Scheme, StepFailure};
+use crate::scheme::{Scheme, SolveTally, StepFailure};
 use crate::state::State;
 use crate::tolerance;
 use serde::Serialize;
@@ -40,6 +40,25 @@ impl Outcome {
     pub fn completed(&self) -> bool {
         matches!(self, Outcome::Completed)
     }
+
+    /// The outcome in a few words with three-digit figures and without the
+    /// step, for a reason that states the step already: "unstable: blew up
+    /// at step 57702 (t = 14.2)".
+    pub fn brief(&self) -> String {
+        use crate::measure::wording::figure;
+        match self {
+            Outcome::Completed => "completed".to_string(),
+            Outcome::Unstable { step, time, .. } => {
+                format!("unstable: blew up at step {step} (t = {})", figure(*time))
+            }
+            Outcome::Failed {
+                step,
+                time,
+                failure,
+                ..
+            } => format!("step {step} failed (t = {}): {failure}", figure(*time)),
+        }
+    }
 }
 
 impl std::fmt::Display for Outcome {
@@ -76,8 +95,21 @@ pub fn integrate<M: Scheme, S: Scene<D>, const D: usize>(
     start: &State<D>,
     h: f64,
     steps: u64,
-    mut observe: impl FnMut(u64, f64, &State<D>),
+    observe: impl FnMut(u64, f64, &State<D>),
 ) -> Outcome {
+    integrate_tallied(scheme, scene, start, h, steps, observe).0
+}
+
+/// [`integrate`], returning as well what the scheme's solves reported over
+/// the run ([`Scheme::solve_tally`]; `None` for a scheme that reports none).
+pub fn integrate_tallied<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    start: &State<D>,
+    h: f64,
+    steps: u64,
+    mut observe: impl FnMut(u64, f64, &State<D>),
+) -> (Outcome, Option<SolveTally>) {
     let bound = tolerance::blow_up_bound(scene.scale());
     let w = scene.frequency();
     let mut carry = scheme.start(scene, start, h);
@@ -85,19 +117,21 @@ pub fn integrate<M: Scheme, S: Scene<D>, const D: usize>(
     for n in 1..=steps {
         let time = n as f64 * h;
         if let Err(failure) = scheme.step(scene, &mut carry, h) {
-            return Outcome::Failed {
+            let outcome = Outcome::Failed {
                 h,
                 step: n,
                 time,
                 failure,
             };
+            return (outcome, scheme.solve_tally(&carry));
         }
         let s = scheme.state(&carry, h);
         let size2 = s.q.norm_squared() + (s.v / w).norm_squared();
         if size2.is_nan() || size2 > bound * bound {
-            return Outcome::Unstable { h, step: n, time };
+            let outcome = Outcome::Unstable { h, step: n, time };
+            return (outcome, scheme.solve_tally(&carry));
         }
         observe(n, time, &s);
     }
-    Outcome::Completed
+    (Outcome::Completed, scheme.solve_tally(&carry))
 }

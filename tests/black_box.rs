@@ -8,8 +8,8 @@
 use stepladder::measure::Verdict;
 use stepladder::measure::geometry::reverse::{ReverseSpec, reversibility};
 use stepladder::measure::geometry::symplectic::{SymplecticSpec, symplecticity};
-use stepladder::scene::{Anharmonic, KeplerCircular, KeplerEccentric, Scene};
-use stepladder::scheme::{BlackBox, Force, Scheme, SchemeMeta};
+use stepladder::scene::{Anharmonic, Harmonic, KeplerCircular, KeplerEccentric, Scene};
+use stepladder::scheme::{BlackBox, Force, Scheme, SchemeMeta, Solve};
 
 const fn claims(
     id: &'static str,
@@ -31,7 +31,7 @@ const fn claims(
     }
 }
 
-fn velocity_verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>) {
+fn velocity_verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
     let n = q.len();
     let mut a = [0.0; 2];
     force(q, &mut a[..n]);
@@ -45,7 +45,7 @@ fn velocity_verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>)
     }
 }
 
-fn euler_cromer(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>) {
+fn euler_cromer(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
     let n = q.len();
     let mut a = [0.0; 2];
     force(q, &mut a[..n]);
@@ -57,7 +57,7 @@ fn euler_cromer(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>) {
 
 /// The implicit midpoint rule, its midpoint velocity found by fixed-point
 /// iteration stopped once a sweep changes it by less than 1e-10.
-fn loose_midpoint(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>) {
+fn loose_midpoint(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
     let n = q.len();
     let (mut q0, mut v0, mut mid, mut a, mut x) =
         ([0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2]);
@@ -85,7 +85,7 @@ fn loose_midpoint(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>) 
     }
 }
 
-fn rk4(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>) {
+fn rk4(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
     let n = q.len();
     let (mut kq, mut kv) = ([[0.0; 2]; 4], [[0.0; 2]; 4]);
     let (mut x, mut u) = ([0.0; 2], [0.0; 2]);
@@ -147,5 +147,189 @@ fn a_false_symplecticity_claim_fails_on_the_eccentric_orbit() {
         record.symplectic_residual > 1e3 * record.tolerance,
         "{}",
         record.reason
+    );
+}
+
+/// Velocity Verlet that keeps its last force for the next step's first
+/// kick: one evaluation a step. The kept force belongs to the run it was
+/// computed in.
+fn first_same_as_last(
+    last: &mut Vec<f64>,
+    q: &mut [f64],
+    v: &mut [f64],
+    h: f64,
+    force: &Force<f64>,
+) {
+    if last.len() != q.len() {
+        last.resize(q.len(), 0.0);
+        force(q, last);
+    }
+    for i in 0..q.len() {
+        v[i] += 0.5 * h * last[i];
+        q[i] += h * v[i];
+    }
+    force(q, last);
+    for i in 0..q.len() {
+        v[i] += 0.5 * h * last[i];
+    }
+}
+
+#[test]
+fn a_stateful_step_needs_its_reset_and_gets_it() {
+    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
+    let claims = claims("bb-fsal-verlet", 2, true, true, 1);
+    let scene = KeplerEccentric::default();
+    // Kept in the closure, as a wrapper without a reset must keep it: every
+    // run but the first starts with a force from another run's end (the
+    // order study ends its runs at 2 sqrt(2) periods, away from the start),
+    // an O(h) error in the first kick, so the global error is O(h).
+    let kept = std::sync::Mutex::new(Vec::new());
+    let never_reset = BlackBox::new(
+        claims,
+        |q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
+            first_same_as_last(&mut kept.lock().unwrap(), q, v, h, force)
+        },
+    );
+    let wrong = global_order(&never_reset, &scene, &OrderSpec::default()).unwrap();
+    assert_ne!(
+        wrong.verdict,
+        Verdict::Pass,
+        "a stale first force passed: {}",
+        wrong.reason
+    );
+    // The same step with its state in the carry, fresh at every run.
+    let stateful = BlackBox::stateful(claims, Vec::new, first_same_as_last);
+    let right = global_order(&stateful, &scene, &OrderSpec::default()).unwrap();
+    assert_eq!(right.verdict, Verdict::Pass, "{}", right.reason);
+    assert_eq!(
+        stepladder::guard::assert_evaluations(&stateful, &scene).per_step,
+        1.0
+    );
+}
+
+/// The implicit midpoint rule on a 1-D scene, its midpoint velocity found by
+/// relaxed fixed-point iteration `mid += relaxation (v0 + h/2 a - mid)` (one
+/// force call an iteration) until a sweep changes it by at most
+/// `tolerance max(1, |mid|)`, reporting the iterations and that last change.
+fn midpoint_solve(
+    tolerance: f64,
+    relaxation: f64,
+    q: &mut [f64],
+    v: &mut [f64],
+    h: f64,
+    force: &Force<f64>,
+) -> Solve {
+    let (q0, v0) = (q[0], v[0]);
+    let (mut mid, mut a) = (v0, [0.0]);
+    let mut solve = Solve {
+        iterations: 0,
+        residual: f64::NAN,
+    };
+    while solve.iterations < 200 {
+        force(&[q0 + 0.5 * h * mid], &mut a);
+        let change = relaxation * (v0 + 0.5 * h * a[0] - mid);
+        mid += change;
+        solve = Solve {
+            iterations: solve.iterations + 1,
+            residual: change.abs(),
+        };
+        if solve.residual <= tolerance * mid.abs().max(1.0) {
+            break;
+        }
+    }
+    q[0] = q0 + h * mid;
+    v[0] = 2.0 * mid - v0;
+    solve
+}
+
+const fn implicit_claims(id: &'static str) -> SchemeMeta {
+    SchemeMeta {
+        implicit: true,
+        ..claims(id, 2, true, true, 1)
+    }
+}
+
+/// Solved to round-off (a sweep changes the midpoint velocity by at most 4
+/// ulps): the rule itself.
+fn tight_midpoint(_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) -> Solve {
+    midpoint_solve(4.0 * f64::EPSILON, 1.0, q, v, h, force)
+}
+
+#[test]
+fn an_implicit_black_box_is_charged_what_its_solves_report() {
+    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
+    use stepladder::measure::cost::evaluations::evaluations;
+    let scene = Harmonic::default();
+    let midpoint = BlackBox::implicit(implicit_claims("bb-midpoint"), || (), tight_midpoint);
+    assert!(midpoint.meta().implicit);
+    // one call an iteration, as reported: counted and reported agree
+    let r = evaluations(&midpoint, &scene, 0.01);
+    assert_eq!(r.reported_per_step, Some(r.per_step), "{}", r.reason);
+    assert!(r.per_step >= 2.0, "{}", r.reason);
+    assert_eq!(r.verdict, Verdict::Pass, "{}", r.reason);
+    // every rung of the order study carries its solves: at least one
+    // iteration a step, and a last change of at most a few ulps of |v| <= 1
+    let order = global_order(&midpoint, &scene, &OrderSpec::default()).unwrap();
+    assert_eq!(order.verdict, Verdict::Pass, "{}", order.reason);
+    for g in order.rungs.iter().filter(|g| g.error.is_some()) {
+        let tally = g.solve.expect("an implicit black box reports its solves");
+        assert_eq!(tally.steps, g.steps);
+        assert!(tally.iterations_per_step() >= 1.0, "{tally:?}");
+        assert!(tally.largest_residual <= 4.0 * f64::EPSILON, "{tally:?}");
+    }
+    // a step that calls the force once more than its iterations (an
+    // acceleration for output, say) spends more than its report says
+    let extra = BlackBox::implicit(
+        implicit_claims("bb-midpoint-extra-call"),
+        || (),
+        |_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
+            let solve = tight_midpoint(&mut (), q, v, h, force);
+            force(q, &mut [0.0]);
+            solve
+        },
+    );
+    let r = evaluations(&extra, &scene, 0.01);
+    let reported = r.reported_per_step.expect("reported");
+    assert_eq!(r.per_step, reported + 1.0, "{}", r.reason);
+    assert_eq!(r.verdict, Verdict::Fail, "{}", r.reason);
+    assert!(
+        r.reason.contains(&format!("{:.2}", r.per_step))
+            && r.reason.contains(&format!("{reported:.2}")),
+        "{}",
+        r.reason
+    );
+}
+
+#[test]
+fn a_solve_stopped_at_a_fixed_tolerance_shows_its_residual_beside_the_error() {
+    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
+    // Relaxed by 1/2, the iteration contracts by about 1/2 a sweep whatever
+    // the step, so stopping at a change of 1e-7 leaves the midpoint velocity
+    // about 1e-7 off and the velocity 2e-7 off in every step: an error that
+    // no step size removes and that adds up over the N = t_end / h steps.
+    // The error cannot fall like h^2 to round-off: order 2 must not pass.
+    let loose = BlackBox::implicit(
+        implicit_claims("bb-midpoint-1e-7"),
+        || (),
+        |_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
+            midpoint_solve(1e-7, 0.5, q, v, h, force)
+        },
+    );
+    let record = global_order(&loose, &Harmonic::default(), &OrderSpec::default()).unwrap();
+    assert_ne!(record.verdict, Verdict::Pass, "{}", record.reason);
+    let message = stepladder::guard::order_failure(&record).expect("not a pass");
+    assert!(
+        message.contains("iterations a step, largest residual"),
+        "{message}"
+    );
+    let finest = record
+        .rungs
+        .iter()
+        .rev()
+        .find_map(|g| g.solve.filter(|_| g.error.is_some()))
+        .expect("solves reported");
+    assert!(
+        finest.largest_residual > 0.0 && finest.largest_residual <= 1e-7,
+        "{finest:?}"
     );
 }

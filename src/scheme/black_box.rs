@@ -17,7 +17,7 @@
 //! use stepladder::scheme::{BlackBox, Force, SchemeMeta};
 //!
 //! /// Somebody else's velocity Verlet, on `f64` slices.
-//! fn verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<f64>) {
+//! fn verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
 //!     let mut a = [0.0; 2];
 //!     force(q, &mut a);
 //!     for i in 0..q.len() {
@@ -56,6 +56,7 @@ use crate::scene::Scene;
 use crate::scheme::{Scheme, SchemeMeta, StepFailure};
 use crate::state::{Real, State, as_f64};
 use nalgebra::SVector;
+use serde::Serialize;
 use std::any::Any;
 use std::fmt::Debug;
 use std::marker::PhantomData;
@@ -97,32 +98,138 @@ impl Float for f32 {
 /// The force callback a black-box step receives: writes the acceleration at
 /// the positions in the first slice into the second. One call is one force
 /// evaluation. The scene computes it in `f64` and rounds it to `T`.
-pub type Force<'a, T> = dyn FnMut(&[T], &mut [T]) + 'a;
+///
+/// It is an `Fn` behind a shared reference, so a crate that calls its
+/// right-hand side through `&self` (a `System::system(&self, ..)` trait
+/// method) can hold `&Force` in its system type and call it directly.
+pub type Force<'a, T> = dyn Fn(&[T], &mut [T]) + 'a;
 
 /// A step function as a plain `fn`: the type of `BlackBox<T, StepFn<T>>`
 /// when the step is a named function.
-pub type StepFn<T> = fn(&mut [T], &mut [T], T, &mut Force<'_, T>);
+pub type StepFn<T> = fn(&mut [T], &mut [T], T, &Force<'_, T>);
 
 /// A scheme given as a step function `step(q, v, h, force)` on slices of
 /// `T` (`f64` or `f32`), with the claims it makes.
 ///
 /// The step advances `q` and `v` in place by one step of size `h`, calling
-/// `force(q, a)` for accelerations. It carries nothing else between steps: a
-/// scheme that reuses its last force should declare the evaluations it
-/// actually makes per step in `force_evaluations`.
+/// `force(q, a)` for accelerations. A step that keeps something between
+/// steps (a last force, a history, a warm start) is built with
+/// [`BlackBox::stateful`]; the other constructors adapt the shapes
+/// integrators come in (a first-order system, a `(q, p)` step, a step on
+/// the integrator's own vector type).
+///
+/// Every study counts the force calls a step makes and compares them with
+/// `force_evaluations` (see [`crate::measure::cost::evaluations`]).
 pub struct BlackBox<T, F> {
     meta: SchemeMeta,
     step: F,
     scalar: PhantomData<fn() -> T>,
 }
 
+/// A black box's step, stateless or with state it keeps between steps.
+/// Implemented for every plain step function and for [`Stateful`]; users
+/// build one through the [`BlackBox`] constructors.
+pub trait BlackBoxStep<T> {
+    /// What the step keeps between steps (`()` for a plain step).
+    type Kept: Clone + Send + Sync;
+    /// The state at the start of a run.
+    fn fresh(&self) -> Self::Kept;
+    /// One step of size `h`.
+    fn advance(&self, kept: &mut Self::Kept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>);
+    /// The solves of the run so far, for a step that reports them
+    /// ([`BlackBox::implicit`]); `None` otherwise.
+    fn tally(&self, _kept: &Self::Kept) -> Option<SolveTally> {
+        None
+    }
+}
+
+/// What one step of an implicit integrator reports of its solve: the
+/// iterations it took and the residual it stopped at (in the integrator's
+/// own norm). A solve stopped at a fixed tolerance leaves an error of about
+/// that residual in every step, which no step size removes: beside the
+/// error of each rung, the tally shows where such a floor comes from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Solve {
+    /// Iterations of the solve in this step.
+    pub iterations: u32,
+    /// The residual the solve stopped at.
+    pub residual: f64,
+}
+
+/// The solves of one run: how many steps reported, their iterations in
+/// all, and the largest residual any stopped at (NaN if any was NaN).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct SolveTally {
+    /// Steps whose solve was reported.
+    pub steps: u64,
+    /// Iterations over those steps.
+    pub iterations: u64,
+    /// The largest final residual.
+    pub largest_residual: f64,
+}
+
+impl SolveTally {
+    /// Adds one step's solve.
+    pub fn add(&mut self, solve: Solve) {
+        self.steps += 1;
+        self.iterations += u64::from(solve.iterations);
+        // a NaN residual stays, rather than vanishing into the maximum
+        if !self.largest_residual.is_nan()
+            && (solve.residual.is_nan() || solve.residual > self.largest_residual)
+        {
+            self.largest_residual = solve.residual;
+        }
+    }
+
+    /// Mean iterations per step (NaN before the first step).
+    pub fn iterations_per_step(&self) -> f64 {
+        self.iterations as f64 / self.steps as f64
+    }
+}
+
+impl<T, F> BlackBoxStep<T> for F
+where
+    F: Fn(&mut [T], &mut [T], T, &Force<'_, T>),
+{
+    type Kept = ();
+    fn fresh(&self) {}
+    #[inline(always)]
+    fn advance(&self, _: &mut (), q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+        (self)(q, v, h, force)
+    }
+}
+
+/// A step with state kept between steps: `fresh()` makes the state a run
+/// starts from, `step(state, q, v, h, force)` advances by one step. Built by
+/// [`BlackBox::stateful`].
+pub struct Stateful<I, F> {
+    fresh: I,
+    step: F,
+}
+
+impl<T, K, I, F> BlackBoxStep<T> for Stateful<I, F>
+where
+    K: Clone + Send + Sync,
+    I: Fn() -> K,
+    F: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>),
+{
+    type Kept = K;
+    fn fresh(&self) -> K {
+        (self.fresh)()
+    }
+    #[inline(always)]
+    fn advance(&self, kept: &mut K, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+        (self.step)(kept, q, v, h, force)
+    }
+}
+
 impl<T, F> BlackBox<T, F>
 where
     T: Float,
-    F: Fn(&mut [T], &mut [T], T, &mut Force<'_, T>),
+    F: Fn(&mut [T], &mut [T], T, &Force<'_, T>),
 {
     /// Wraps `step` with its claims.
-    pub fn new(meta: SchemeMeta, step: F) -> Self {
+    pub const fn new(meta: SchemeMeta, step: F) -> Self {
         Self {
             meta,
             step,
@@ -131,12 +238,177 @@ where
     }
 }
 
+impl<T: Float> BlackBox<T, ()> {
+    /// Wraps a step that keeps state between steps: a first-same-as-last
+    /// force, a multistep history, a warm-started implicit solve, an
+    /// integrator object with its caches. Every run (each rung of a ladder,
+    /// each twin of a round-off estimate, each direction of a round trip)
+    /// starts from `fresh()`, so no run sees another's state.
+    ///
+    /// ```
+    /// use stepladder::guard;
+    /// use stepladder::scene::Harmonic;
+    /// use stepladder::scheme::{BlackBox, Force, VELOCITY_VERLET};
+    ///
+    /// /// Velocity Verlet that reuses the force of the step before: one
+    /// /// evaluation per step once it has started.
+    /// fn reusing(last: &mut Option<[f64; 1]>, q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
+    ///     let mut a = last.unwrap_or_else(|| {
+    ///         let mut a = [0.0];
+    ///         force(q, &mut a);
+    ///         a
+    ///     });
+    ///     v[0] += 0.5 * h * a[0];
+    ///     q[0] += h * v[0];
+    ///     force(q, &mut a);
+    ///     v[0] += 0.5 * h * a[0];
+    ///     *last = Some(a);
+    /// }
+    /// let theirs = BlackBox::stateful(*VELOCITY_VERLET.meta(), || None, reusing);
+    /// guard::assert_order(&theirs, &Harmonic::default());
+    /// guard::assert_evaluations(&theirs, &Harmonic::default());
+    /// # use stepladder::scheme::Scheme;
+    /// ```
+    pub const fn stateful<K, I, S>(
+        meta: SchemeMeta,
+        fresh: I,
+        step: S,
+    ) -> BlackBox<T, Stateful<I, S>>
+    where
+        K: Clone + Send + Sync,
+        I: Fn() -> K,
+        S: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>),
+    {
+        BlackBox {
+            meta,
+            step: Stateful { fresh, step },
+            scalar: PhantomData,
+        }
+    }
+}
+
+/// An implicit step that reports its solve, with state kept between steps:
+/// `step(state, q, v, h, force)` advances by one step and returns the
+/// [`Solve`]. Built by [`BlackBox::implicit`].
+pub struct Implicit<I, F> {
+    fresh: I,
+    step: F,
+}
+
+impl<T, K, I, F> BlackBoxStep<T> for Implicit<I, F>
+where
+    K: Clone + Send + Sync,
+    I: Fn() -> K,
+    F: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> Solve,
+{
+    type Kept = (K, SolveTally);
+    fn fresh(&self) -> Self::Kept {
+        ((self.fresh)(), SolveTally::default())
+    }
+    #[inline(always)]
+    fn advance(&self, kept: &mut Self::Kept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+        let solve = (self.step)(&mut kept.0, q, v, h, force);
+        kept.1.add(solve);
+    }
+    fn tally(&self, kept: &Self::Kept) -> Option<SolveTally> {
+        Some(kept.1)
+    }
+}
+
+impl<T: Float> BlackBox<T, ()> {
+    /// Wraps an implicit step that reports its solve (iterations and final
+    /// residual) each step, with state kept between steps as in
+    /// [`BlackBox::stateful`]. The claims are marked implicit, and
+    /// `force_evaluations` is read per iteration: the evaluations claim
+    /// compares the calls counted with the iterations reported times that
+    /// claim, and the order study shows each rung's iterations per step and
+    /// largest residual beside its error.
+    ///
+    /// ```
+    /// use stepladder::guard;
+    /// use stepladder::scene::Harmonic;
+    /// use stepladder::scheme::{BlackBox, Force, SchemeMeta, Solve};
+    ///
+    /// /// The implicit midpoint rule, its stage solved by fixed-point
+    /// /// iteration to round-off: one force evaluation per iteration.
+    /// fn midpoint(_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) -> Solve {
+    ///     let (q0, v0) = (q[0], v[0]);
+    ///     let (mut vm, mut a) = (v0, [0.0]);
+    ///     for iterations in 1..=100 {
+    ///         force(&[q0 + 0.5 * h * vm], &mut a);
+    ///         let next = v0 + 0.5 * h * a[0];
+    ///         let residual = (next - vm).abs();
+    ///         vm = next;
+    ///         if residual <= 4.0 * f64::EPSILON * vm.abs().max(1.0) {
+    ///             q[0] = q0 + h * vm;
+    ///             v[0] = 2.0 * vm - v0;
+    ///             return Solve { iterations, residual };
+    ///         }
+    ///     }
+    ///     Solve { iterations: 100, residual: f64::NAN }
+    /// }
+    /// let theirs = BlackBox::implicit(
+    ///     SchemeMeta {
+    ///         id: "their-midpoint",
+    ///         name: "implicit midpoint, fixed-point iteration",
+    ///         order: 2,
+    ///         symplectic: true,
+    ///         symmetric: true,
+    ///         force_evaluations: 1, // per iteration
+    ///         implicit: true,
+    ///         reference: "their crate",
+    ///         phase_error: None,
+    ///     },
+    ///     || (),
+    ///     midpoint,
+    /// );
+    /// guard::assert_order(&theirs, &Harmonic::default());
+    /// guard::assert_evaluations(&theirs, &Harmonic::default());
+    /// ```
+    pub const fn implicit<K, I, S>(
+        meta: SchemeMeta,
+        fresh: I,
+        step: S,
+    ) -> BlackBox<T, Implicit<I, S>>
+    where
+        K: Clone + Send + Sync,
+        I: Fn() -> K,
+        S: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> Solve,
+    {
+        BlackBox {
+            meta: SchemeMeta {
+                implicit: true,
+                ..meta
+            },
+            step: Implicit { fresh, step },
+            scalar: PhantomData,
+        }
+    }
+}
+
+/// The carry of a black box: the synchronised state and what the step
+/// keeps.
+#[derive(Clone)]
+pub struct BlackBoxCarry<R: Real, const D: usize, K> {
+    state: State<D, R>,
+    kept: K,
+}
+
+impl<R: Real, const D: usize, K> Debug for BlackBoxCarry<R, D, K> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // the kept state is the integrator's own business
+        f.debug_struct("BlackBoxCarry")
+            .field("state", &self.state)
+            .finish_non_exhaustive()
+    }
+}
+
 impl<T, F> Scheme for BlackBox<T, F>
 where
     T: Float,
-    F: Fn(&mut [T], &mut [T], T, &mut Force<'_, T>),
+    F: BlackBoxStep<T>,
 {
-    type Carry<R: Real, const D: usize> = State<D, R>;
+    type Carry<R: Real, const D: usize> = BlackBoxCarry<R, D, F::Kept>;
 
     fn meta(&self) -> &SchemeMeta {
         &self.meta
@@ -147,21 +419,24 @@ where
         _: &S,
         state: &State<D, R>,
         _: R,
-    ) -> State<D, R> {
-        *state
+    ) -> Self::Carry<R, D> {
+        BlackBoxCarry {
+            state: *state,
+            kept: self.step.fresh(),
+        }
     }
 
-    fn state<R: Real, const D: usize>(&self, state: &State<D, R>, _: R) -> State<D, R> {
-        *state
+    fn state<R: Real, const D: usize>(&self, carry: &Self::Carry<R, D>, _: R) -> State<D, R> {
+        carry.state
     }
 
     fn step<R: Real, const D: usize, S: Scene<D>>(
         &self,
         scene: &S,
-        state: &mut State<D, R>,
+        carry: &mut Self::Carry<R, D>,
         h: R,
     ) -> Result<(), StepFailure> {
-        let state = plain::<State<D, R>, State<D, f64>>(state);
+        let state = plain::<State<D, R>, State<D, f64>>(&mut carry.state);
         let h = as_f64(h).expect("an f64 state comes with an f64 step");
         let mut q = [T::default(); D];
         let mut v = [T::default(); D];
@@ -169,7 +444,7 @@ where
             q[i] = T::from_f64(state.q[i]);
             v[i] = T::from_f64(state.v[i]);
         }
-        let mut force = |x: &[T], a: &mut [T]| {
+        let force = |x: &[T], a: &mut [T]| {
             assert!(
                 x.len() == D && a.len() == D,
                 "stepladder: a black-box force call needs slices of the scene's dimension {D}, \
@@ -183,7 +458,8 @@ where
                 a[i] = T::from_f64(acceleration[i]);
             }
         };
-        (self.step)(&mut q, &mut v, T::from_f64(h), &mut force);
+        self.step
+            .advance(&mut carry.kept, &mut q, &mut v, T::from_f64(h), &force);
         for i in 0..D {
             state.q[i] = q[i].to_f64();
             state.v[i] = v[i].to_f64();
@@ -197,6 +473,23 @@ where
 
     fn epsilon(&self) -> f64 {
         T::EPSILON
+    }
+
+    /// For an implicit black box that reports its solves: the iterations
+    /// reported times the evaluations claimed per iteration.
+    fn solver_evaluations<R: Real, const D: usize>(
+        &self,
+        carry: &Self::Carry<R, D>,
+    ) -> Option<u64> {
+        let tally = self.step.tally(&carry.kept)?;
+        Some(tally.iterations * u64::from(self.meta.force_evaluations))
+    }
+
+    fn solve_tally<R: Real, const D: usize>(
+        &self,
+        carry: &Self::Carry<R, D>,
+    ) -> Option<SolveTally> {
+        self.step.tally(&carry.kept)
     }
 }
 
@@ -225,7 +518,7 @@ mod tests {
         q: &mut [T],
         v: &mut [T],
         h: T,
-        force: &mut Force<T>,
+        force: &Force<T>,
     ) {
         let half = T::from_f64(0.5) * h;
         let mut a = [T::default(); 4];
@@ -306,6 +599,29 @@ mod tests {
         let d = (s.q - exact.q).amax();
         assert!(d > 0.0 && d < 1e-5, "f32 against f64 after 10 steps: {d:e}");
         assert_eq!(bb.epsilon(), f32::EPSILON as f64);
+    }
+
+    #[test]
+    fn a_tally_keeps_the_largest_residual_and_a_nan() {
+        let mut t = SolveTally::default();
+        for (iterations, residual) in [(3, 1e-9), (5, 4e-9), (1, 2e-9)] {
+            t.add(Solve {
+                iterations,
+                residual,
+            });
+        }
+        assert_eq!((t.steps, t.iterations, t.largest_residual), (3, 9, 4e-9));
+        assert_eq!(t.iterations_per_step(), 3.0);
+        // a solve that ended on NaN is not hidden by a later finite one
+        t.add(Solve {
+            iterations: 2,
+            residual: f64::NAN,
+        });
+        t.add(Solve {
+            iterations: 2,
+            residual: 1.0,
+        });
+        assert!(t.largest_residual.is_nan());
     }
 
     #[test]

@@ -6,6 +6,7 @@
 //! the acceleration it will reuse); [`Scheme::state`] hands studies a
 //! synchronised `(q, v)` at whole steps so they compare like with like.
 
+pub mod adapter;
 pub mod black_box;
 mod catalogue;
 pub mod compensated;
@@ -20,7 +21,10 @@ mod single_precision;
 mod splitting;
 mod verlet;
 
-pub use black_box::{BlackBox, Float, Force, StepFn};
+pub use adapter::{Hamiltonian, Rhs, Vector, VectorForce};
+pub use black_box::{
+    BlackBox, BlackBoxStep, Float, Force, Implicit, Solve, SolveTally, Stateful, StepFn,
+};
 pub use catalogue::{SchemeVisitor, TABLES, catalogue, scheme_ids, visit_scheme};
 pub use compensated::{
     CompensatedSplitting, LeapfrogCompensated, StormerVerletCompensated,
@@ -161,6 +165,16 @@ pub trait Scheme {
         &self,
         _carry: &Self::Carry<R, D>,
     ) -> Option<u64> {
+        None
+    }
+
+    /// The iterations and residuals of an implicit scheme's solves since
+    /// `start`, where it reports them ([`BlackBox::implicit`]); `None`
+    /// otherwise.
+    fn solve_tally<R: Real, const D: usize>(
+        &self,
+        _carry: &Self::Carry<R, D>,
+    ) -> Option<SolveTally> {
         None
     }
 

@@ -128,7 +128,7 @@ fn a_stiff_oscillator_above_the_limit_ends_early_with_a_clear_verdict() {
     // state grows by 1e6 within about 15 steps
     assert!(step < 30, "stopped only after {step} steps");
     assert!(
-        r.reason.starts_with("unstable at h = 0.05, after"),
+        r.reason.starts_with("unstable: blew up at step"),
         "{}",
         r.reason
     );
@@ -489,7 +489,7 @@ fn multistep_recurrences_keep_their_root_test() {
 // growth rule was not designed on.
 
 /// The step of a synthetic black box.
-type SyntheticStep = Box<dyn Fn(&mut [f64], &mut [f64], f64, &mut Force<'_, f64>)>;
+type SyntheticStep = Box<dyn Fn(&mut [f64], &mut [f64], f64, &Force<'_, f64>)>;
 
 /// A black box that applies `sqrt(det(z))` times the rotation by `z` (w0 =
 /// 1, one force evaluation made and ignored): a map with eigenvalues of
@@ -510,7 +510,7 @@ fn scaled_rotation(id: &'static str, excess: fn(f64) -> f64) -> BlackBox<f64, Sy
     BlackBox::new(
         meta,
         Box::new(
-            move |q: &mut [f64], v: &mut [f64], h: f64, force: &mut Force<'_, f64>| {
+            move |q: &mut [f64], v: &mut [f64], h: f64, force: &Force<'_, f64>| {
                 let mut a = [0.0];
                 force(q, &mut a);
                 let e = excess(h);

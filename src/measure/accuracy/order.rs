@@ -50,9 +50,9 @@ use crate::ladder::{AUTO_START, AutoLadder, LadderChoice, LadderEnd, per_octave,
 use crate::measure::Verdict;
 use crate::measure::accuracy::fit::OrderFit;
 use crate::measure::accuracy::invariants::{InvariantRecord, InvariantSample, judge_invariant};
-use crate::run::{Outcome, integrate};
+use crate::run::{Outcome, integrate, integrate_tallied};
 use crate::scene::{Invariant, InvariantValue, Scaled, Scene};
-use crate::scheme::Scheme;
+use crate::scheme::{Scheme, SolveTally};
 use crate::state::State;
 use crate::tolerance::{
     self, ERROR_CEILING, EXACT_SOLUTION_ULPS, MIN_WINDOW, MIN_WINDOW_HALVINGS, TWIN_SCALE,
@@ -229,8 +229,10 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         shorter /= SHORTER_END;
         let mut next = order_at(scheme, scene, spec.ladder, shorter)?;
         next.reason = format!(
-            "{} (at t_end = {:.4} the data could not decide: {})",
-            next.reason, record.t_end, record.reason
+            "{} (at t_end = {} the data could not decide: {})",
+            next.reason,
+            crate::measure::wording::figure(record.t_end),
+            record.reason
         );
         next.shortened_from = Some(t_end);
         record = next;
@@ -314,6 +316,8 @@ struct Run<const D: usize> {
     invariants: Vec<(f64, f64)>,
     /// Per invariant: the largest distance to its twin's value.
     invariant_round_off: Vec<f64>,
+    /// What the scheme's solves reported over the run.
+    solve: Option<SolveTally>,
 }
 
 /// The runs of one order study, keyed by step count.
@@ -353,7 +357,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
     /// Runs `steps` steps from `start`, keeping the states at the
     /// comparison steps (and, for a half-step reference, at twice those of
     /// half the step count).
-    fn run(&self, steps: u64) -> (Outcome, Vec<State<D>>, Vec<State<D>>) {
+    fn run(&self, steps: u64) -> (Outcome, Option<SolveTally>, Vec<State<D>>, Vec<State<D>>) {
         let (start, h) = (self.scene.initial(), self.t_end / steps as f64);
         let mut own_at = comparison_steps(steps).peekable();
         let coarser = steps.is_multiple_of(2).then_some(steps / 2);
@@ -362,15 +366,16 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             .flat_map(|c| comparison_steps(c).map(|n| 2 * n))
             .peekable();
         let (mut own, mut for_coarser) = (Vec::new(), Vec::new());
-        let outcome = integrate(self.scheme, self.scene, &start, h, steps, |n, _, s| {
-            if own_at.next_if_eq(&n).is_some() {
-                own.push(*s);
-            }
-            if coarser_at.next_if_eq(&n).is_some() {
-                for_coarser.push(*s);
-            }
-        });
-        (outcome, own, for_coarser)
+        let (outcome, solve) =
+            integrate_tallied(self.scheme, self.scene, &start, h, steps, |n, _, s| {
+                if own_at.next_if_eq(&n).is_some() {
+                    own.push(*s);
+                }
+                if coarser_at.next_if_eq(&n).is_some() {
+                    for_coarser.push(*s);
+                }
+            });
+        (outcome, solve, own, for_coarser)
     }
 
     /// Runs the rung of `steps` steps and its twin (once each), and compares
@@ -482,7 +487,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
     /// Runs `steps` steps from the scene's start and stores the run (as a
     /// reference only, until [`Lab::measure`] makes it a rung).
     fn execute(&mut self, steps: u64) {
-        let (outcome, own, for_coarser) = self.run(steps);
+        let (outcome, solve, own, for_coarser) = self.run(steps);
         let done = outcome.completed();
         let invariants = if done {
             self.invariant_changes(&own)
@@ -503,6 +508,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
                 round_off_sample: None,
                 invariants,
                 invariant_round_off: Vec::new(),
+                solve,
             },
         );
     }
@@ -719,6 +725,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
                     used: false,
                     dropped: (!r.measured).then_some(DropReason::Reference),
                     outcome: r.outcome.clone(),
+                    solve: r.solve,
                 }
             })
             .collect()

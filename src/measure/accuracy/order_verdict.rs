@@ -7,11 +7,12 @@ use crate::measure::Verdict;
 use crate::measure::accuracy::fit::OrderFit;
 use crate::measure::accuracy::fit::power_law;
 use crate::measure::accuracy::rung::{DropReason, OrderReduction, Reference, Rung};
-use crate::measure::accuracy::window::Analysis;
 use crate::measure::accuracy::window::median_of;
+use crate::measure::accuracy::window::{Analysis, RungData, select_window};
+use crate::measure::wording::{figure, order, vs_lower, vs_upper};
 use crate::tolerance::{
     self, ERROR_CEILING, MIN_WINDOW, MIN_WINDOW_HALVINGS, ORDER_TOLERANCE, REFERENCE_RUNGS,
-    STALL_ORDER,
+    STALL_ORDER, WINDOW_RUNGS,
 };
 
 /// The verdict on a ladder, why, and what to change when inconclusive.
@@ -60,32 +61,31 @@ pub(crate) fn judge(
         .and_then(|(a, b)| order_reduction(claim, rungs, a, b));
     if let (Some(f), Some(ci), Some(window)) = (analysis.fit, analysis.ci95, analysis.choice.window)
     {
-        return judge_fit(claim, rungs, f, ci, window, reduction);
+        return judge_fit(claim, rungs, f, ci, window, reduction, end);
     }
     let finest_h = rungs.last().map_or(f64::NAN, |r| r.h);
     let end_note = match end {
-        LadderEnd::Cap => format!("the ladder reached its step cap at h = {finest_h:.3e}"),
+        LadderEnd::Cap => format!(
+            "the ladder reached its step cap at h = {}",
+            figure(finest_h)
+        ),
         LadderEnd::Floor => "the ladder reached the round-off floor".to_string(),
         LadderEnd::Fixed => "a fixed ladder".to_string(),
     };
     if let Some(r) = reduction {
         return Judgement::fail(
-            format!(
-                "order reduction: the local order falls from {:.2} towards {:.2} below h = {:.3e}, \
-                 under the claimed {claim} ({end_note})",
-                r.from, r.to, r.sets_in_at
-            ),
+            format!("{} ({end_note})", reduction_text(claim, &r)),
             reduction,
         );
     }
     let clean = analysis.choice.clean.map_or(0, |(a, b)| b + 1 - a);
-    let at_floor = analysis
-        .choice
-        .dropped
+    let floor: Vec<&Rung> = rungs
         .iter()
-        .filter(|d| **d == Some(DropReason::RoundOff))
-        .count();
-    if clean == 0 && at_floor == 0 {
+        .zip(&analysis.choice.dropped)
+        .filter(|(_, d)| **d == Some(DropReason::RoundOff))
+        .map(|(r, _)| r)
+        .collect();
+    if clean == 0 && floor.is_empty() {
         return judge_unresolved(rungs, analysis, reference, end, scale);
     }
     if clean == 0 {
@@ -93,11 +93,25 @@ pub(crate) fn judge(
             .iter()
             .filter_map(|r| r.error)
             .fold(f64::INFINITY, f64::min);
+        // the share of its error each rung on the floor owes to round-off
+        let shares: Vec<f64> = floor
+            .iter()
+            .filter_map(|r| Some(r.round_off_bound? / r.error?))
+            .filter(|f| f.is_finite())
+            .collect();
+        let (least, most) = shares.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &f| {
+            (lo.min(f), hi.max(f))
+        });
         return Judgement::inconclusive(
             format!(
-                "round-off is a large part of the error at every rung that resolves the motion \
-                 (smallest error {smallest:.3e}, {:.1e} of the orbit)",
-                smallest / scale
+                "round-off is a large part of the error at every rung that resolves the motion: \
+                 the round-off bound is {} to {} of the error at the {} rungs on the floor \
+                 (smallest error {}, {} of the orbit)",
+                figure(least),
+                figure(most),
+                floor.len(),
+                figure(smallest),
+                figure(smallest / scale)
             ),
             "an error at round-off everywhere means the scheme is exact on this scene: measure \
              it on one where it is not; a large round-off means the scene magnifies it over \
@@ -106,29 +120,140 @@ pub(crate) fn judge(
         );
     }
     let (a, b) = analysis.choice.clean.expect("clean rungs");
-    let locals: Vec<String> = (a + 1..=b)
+    // the finest local orders, where a window is sought
+    let locals: Vec<String> = ((a + 1).max((b + 1).saturating_sub(WINDOW_RUNGS))..=b)
         .filter_map(|i| rungs[i].local_order)
         .map(|l| format!("{l:.2}"))
         .collect();
+    let unsettled = format!(
+        "no window of {MIN_WINDOW} rungs over {MIN_WINDOW_HALVINGS} halvings with a settled local \
+         order: {clean} clean rungs (h = {} .. {}), the finest local orders [{}]",
+        figure(rungs[a].h),
+        figure(rungs[b].h),
+        locals.join(", ")
+    );
+    if let Some(outlier) = outlying_rung(rungs, analysis, scale) {
+        return Judgement::inconclusive(
+            format!("{unsettled}: {outlier} ({end_note})"),
+            "one rung off its neighbours' trend is a cancellation of the error's terms at that \
+             step and end time, not a property of the scheme: measure at another t_end \
+             (OrderSpec::t_end) or on another ladder (OrderSpec::ladder)"
+                .into(),
+        );
+    }
+    if let Some(cut) = cut_by_round_off(rungs, analysis) {
+        return Judgement::inconclusive(
+            format!("{unsettled}: {cut}"),
+            "shorten t_end, which lowers the round-off a rung accumulates and the magnification \
+             of the flow, so that more rungs stand clear of the floor"
+                .into(),
+        );
+    }
     let advice = match end {
         LadderEnd::Cap => {
             "the local order was still moving when the ladder reached its step cap: raise the \
              cap (AutoLadder::max_rung_evaluations) or shorten t_end"
         }
         LadderEnd::Floor => {
-            "round-off leaves too few clean rungs above it: shorten t_end, which lowers the \
-             round-off a rung accumulates and the magnification of the flow"
+            "the local order was still moving when the ladder reached the round-off floor: \
+             shorten t_end, which lowers the floor and lets the ladder reach finer steps"
         }
         LadderEnd::Fixed => "use the automatic ladder, which runs to the floor",
     };
-    Judgement::inconclusive(
-        format!(
-            "no window of {MIN_WINDOW} rungs with a settled local order: {clean} clean rungs, \
-             local orders [{}] ({end_note})",
-            locals.join(", ")
-        ),
-        advice.into(),
+    Judgement::inconclusive(format!("{unsettled} ({end_note})"), advice.into())
+}
+
+/// An order reduction in words, with the limit the local orders head for
+/// against the bound it falls below.
+fn reduction_text(claim: f64, r: &OrderReduction) -> String {
+    let margin = tolerance::plateau_tolerance(claim).max(ORDER_TOLERANCE);
+    format!(
+        "order reduction: below h = {} the local order falls from {} towards {} (the claimed \
+         {claim} less {})",
+        figure(r.sets_in_at),
+        figure(r.from),
+        vs_lower(r.to, "", claim - margin),
+        figure(margin)
     )
+}
+
+/// The ladder data the window was chosen from.
+fn data(rungs: &[Rung]) -> Vec<RungData> {
+    rungs
+        .iter()
+        .map(|r| RungData {
+            h: r.h,
+            error: r.error,
+            round_off: r.round_off_bound.unwrap_or(0.0),
+        })
+        .collect()
+}
+
+/// One rung whose error alone keeps the window from forming: without it,
+/// the window selection finds a window through its neighbours. Such a rung
+/// moves two neighbouring local orders in opposite directions (its error is
+/// off its neighbours' trend); round-off, which grows steadily along the
+/// ladder, does not do that to one rung, and the rung is clean (its
+/// round-off bound a small part of its error). Searched from the fine end.
+fn outlying_rung(rungs: &[Rung], analysis: &Analysis, scale: f64) -> Option<String> {
+    let (a, b) = analysis.choice.clean?;
+    let all = data(rungs);
+    (a..=b).rev().find_map(|j| {
+        let mut without = all.clone();
+        without.remove(j);
+        let (first, last) = select_window(&without, scale).window?;
+        // the window must reach the clean rungs on both sides of the gap,
+        // or past it (the finest rung left out)
+        let spans = first < j && (last >= j || j == b);
+        let round_off = rungs[j].round_off_bound.unwrap_or(0.0);
+        let error = rungs[j].error?;
+        spans.then(|| {
+            let side = |i: usize| rungs.get(i).and_then(|r| r.local_order);
+            let sides: Vec<String> = [side(j), side(j + 1).filter(|_| j < b)]
+                .into_iter()
+                .flatten()
+                .map(|l| format!("{l:.2}"))
+                .collect();
+            format!(
+                "one outlying rung, at h = {} (local orders {} on either side), whose error {} \
+                 is clear of its round-off bound {}; without it the rungs from h = {} to {} \
+                 form a window",
+                figure(rungs[j].h),
+                sides.join(" and "),
+                figure(error),
+                figure(round_off),
+                figure(without[first].h),
+                figure(without[last].h)
+            )
+        })
+    })
+}
+
+/// The clean rungs are too few, and the rung below them is on the
+/// round-off floor: its round-off bound reaches the part of its error that
+/// would leave its local order resolved ([`tolerance::clean_fraction`]).
+/// Only then does round-off cut the window short.
+fn cut_by_round_off(rungs: &[Rung], analysis: &Analysis) -> Option<String> {
+    let (a, b) = analysis.choice.clean?;
+    let halvings = (rungs[a].h / rungs[b].h).log2();
+    let too_few = b + 1 - a < MIN_WINDOW || halvings < MIN_WINDOW_HALVINGS;
+    let below = rungs.get(b + 1)?;
+    if !too_few || analysis.choice.dropped.get(b + 1)? != &Some(DropReason::RoundOff) {
+        return None;
+    }
+    let (error, round_off) = (below.error?, below.round_off_bound?);
+    let local = below.local_order.filter(|l| l.is_finite()).unwrap_or(1.0);
+    let share = tolerance::clean_fraction((rungs[b].h / below.h).ln(), local);
+    Some(format!(
+        "{} rungs over {:.1} halvings stand above the round-off floor, which begins at h = {}: \
+         there the round-off bound {}, the part of the error {} that round-off may be on a \
+         clean rung",
+        b + 1 - a,
+        halvings,
+        figure(below.h),
+        vs_lower(round_off, "", share * error),
+        figure(error),
+    ))
 }
 
 /// The verdict when a window was found: the claim against the fitted
@@ -140,10 +265,18 @@ fn judge_fit(
     ci: [f64; 2],
     (a, b): (usize, usize),
     reduction: Option<OrderReduction>,
+    end: LadderEnd,
 ) -> Judgement {
+    let span = format!(
+        "over rungs {a}..{b} (h {} .. {})",
+        figure(rungs[a].h),
+        figure(rungs[b].h)
+    );
     let over = format!(
-        "order {:.3} in [{:.3}, {:.3}] over rungs {a}..{b} (h {:.3e} .. {:.3e})",
-        f.order, ci[0], ci[1], rungs[a].h, rungs[b].h
+        "order {} in [{}, {}] {span}",
+        order(f.order),
+        order(ci[0]),
+        order(ci[1])
     );
     match tolerance::order_verdict(claim, f.order, ci) {
         Ok(note) => Judgement {
@@ -156,25 +289,35 @@ fn judge_fit(
             match still_rising_to(claim, rungs, a, b) {
                 Some(limit) => Judgement::inconclusive(
                     format!(
-                        "{why}: {over}, but the finest local orders still rise towards the \
+                        "{why}, {span}, but the finest local orders still rise towards the \
                          claim (heading for {limit:.2}): a cancellation in the leading error \
                          term not yet passed at these steps"
                     ),
-                    "shorten t_end, which lowers the round-off floor and lets the ladder reach \
-                     the steps where the claimed order's term dominates"
-                        .into(),
+                    match end {
+                        LadderEnd::Cap => {
+                            "raise the step cap (AutoLadder::max_rung_evaluations) or shorten \
+                             t_end, so that the ladder reaches the steps where the claimed \
+                             order's term dominates"
+                        }
+                        LadderEnd::Floor => {
+                            "shorten t_end, which lowers the round-off floor and lets the \
+                             ladder reach the steps where the claimed order's term dominates"
+                        }
+                        LadderEnd::Fixed => {
+                            "use the automatic ladder, which runs on to where the claimed \
+                             order's term dominates"
+                        }
+                    }
+                    .into(),
                 ),
-                None => Judgement::fail(format!("{why}: {over}"), reduction),
+                None => Judgement::fail(format!("{why}, {span}"), reduction),
             }
         }
         Err(why) => {
             let fell = reduction.map_or(String::new(), |r| {
-                format!(
-                    "; the local order falls from {:.2} towards {:.2} below h = {:.3e} (order reduction)",
-                    r.from, r.to, r.sets_in_at
-                )
+                format!("; {}", reduction_text(claim, &r))
             });
-            Judgement::fail(format!("{why}: {over}{fell}"), reduction)
+            Judgement::fail(format!("{why}, {span}{fell}"), reduction)
         }
     }
 }
@@ -202,8 +345,9 @@ fn judge_unresolved(
     if reference == Reference::Exact && unstable == rungs.len() {
         return Judgement::fail(
             format!(
-                "no convergence: every rung blew up, down to h = {finest_h:.3e}, though \
-                 the exact motion stays bounded"
+                "no convergence: every rung blew up, down to h = {}, though the exact \
+                 motion stays bounded",
+                figure(finest_h)
             ),
             None,
         );
@@ -214,7 +358,8 @@ fn judge_unresolved(
     Judgement::inconclusive(
         format!(
             "no rung resolved the motion ({unstable} unstable, {above} with errors above \
-             {ERROR_CEILING} of the orbit, down to h = {finest_h:.3e})"
+             {ERROR_CEILING} of the orbit, down to h = {})",
+            figure(finest_h)
         ),
         match end {
             LadderEnd::Fixed => "a correct scheme needs finer steps here: give the ladder \
@@ -248,9 +393,13 @@ fn converges_elsewhere(rungs: &[Rung], scale: f64) -> Option<String> {
     elsewhere.then(|| {
         let (h, e, d) = finest[1];
         format!(
-            "converges, but not to the exact solution: at h = {h:.3e} the run differs from its \
-             half step by {d:.3e} and from the exact motion by {e:.3e} (the scheme solves \
-             another problem, or starts from another state)"
+            "converges, but not to the exact solution: at h = {} the run differs from its half \
+             step by {} and from the exact motion by {}, four times that difference (were it \
+             converging to the exact motion at any order, at most twice): the scheme solves \
+             another problem, or starts from another state",
+            figure(h),
+            figure(d),
+            vs_upper(e, "", 4.0 * d),
         )
     })
 }
@@ -302,16 +451,19 @@ fn stall(rungs: &[Rung], a: usize, b: usize) -> Option<String> {
         (line.ci95[1] < STALL_ORDER && !falls).then(|| {
             let round_off = run.iter().map(|p| p.2).fold(0.0, f64::max);
             format!(
-                "the error stops falling: from h = {:.3e} to {finest_h:.3e} ({} clean rungs, \
-                 {halvings:.1} halvings) it falls only at order {:.2} in [{:.2}, {:.2}] and \
-                 ends near {e2:.3e} (median of the finer half), while round-off there is at \
-                 most {round_off:.1e}: the scheme carries an error that does not shrink with \
-                 the step (a step, a coefficient or a force rounded or off by a constant)",
-                run[0].0,
+                "the error stops falling: from h = {} to {} ({} clean rungs, {halvings:.1} \
+                 halvings) it falls at order {:.2} in [{:.2}, {:.2}], the interval's upper end {} \
+                 (halfway between orders 0 and 1), and ends near {} (median of the finer \
+                 half): the scheme carries an error that does not shrink with the step (a \
+                 step, a coefficient or a force rounded or off by a constant)",
+                figure(run[0].0),
+                figure(finest_h),
                 run.len(),
                 line.slope,
                 line.ci95[0],
-                line.ci95[1]
+                line.ci95[1],
+                vs_lower(line.ci95[1], "", STALL_ORDER),
+                vs_upper(e2, "round-off bound", round_off),
             )
         })
     })
@@ -435,6 +587,7 @@ mod tests {
                     used: false,
                     dropped: None,
                     outcome: Outcome::Completed,
+                    solve: None,
                 }
             })
             .collect()
@@ -448,7 +601,7 @@ mod tests {
             ladder(|h| 0.5 * h * h + 1e-8 * (1.0 + 5.0 * ((1.0 / h).ln() * 7.0).sin().abs()));
         let found = stall(&rungs, 0, rungs.len() - 1).expect("a stall");
         assert!(found.contains("stops falling"), "{found}");
-        assert!(found.contains("1.0e-15"), "{found}");
+        assert!(found.contains("round-off bound 1.00e-15"), "{found}");
     }
 
     #[test]
@@ -482,5 +635,83 @@ mod tests {
         // the same constant met five halvings earlier is a stall
         let rungs = ladder(|h| h * h + 1e-8);
         assert!(stall(&rungs, 0, rungs.len() - 1).is_some());
+    }
+
+    /// The rungs as the order study judges them: local orders set, the
+    /// window chosen, and the claim judged at the round-off floor.
+    fn judged_at_floor(claim: f64, mut rungs: Vec<Rung>) -> (Vec<Rung>, Judgement) {
+        for k in 1..rungs.len() {
+            rungs[k].local_order = crate::measure::accuracy::window::local_order(
+                (rungs[k - 1].h, rungs[k - 1].error),
+                (rungs[k].h, rungs[k].error),
+            );
+        }
+        let analysis = crate::measure::accuracy::window::analyse(&data(&rungs), 1.0);
+        let judgement = judge(
+            claim,
+            &rungs,
+            &analysis,
+            Reference::Exact,
+            LadderEnd::Floor,
+            1.0,
+        );
+        (rungs, judgement)
+    }
+
+    /// A clean second-order ladder run to the floor with one rung, three
+    /// from the fine end, whose error is three times its neighbours' trend:
+    /// the two local orders beside it (5.2 and -1.2) keep any window from
+    /// forming. Round-off (1e-15 against errors above 1e-11) is nowhere
+    /// near those rungs, so the advice must name the outlying rung and its
+    /// step, and must not blame round-off.
+    #[test]
+    fn one_outlying_rung_is_named_and_not_blamed_on_round_off() {
+        let outlier = 27;
+        let mut rungs = ladder(|h| h * h);
+        let e = rungs[outlier].error.expect("an error");
+        rungs[outlier].error = Some(3.0 * e);
+        let h = rungs[outlier].h;
+        let (rungs, j) = judged_at_floor(2.0, rungs);
+        assert_eq!(j.verdict, Verdict::Inconclusive, "{}", j.reason);
+        let advice = j.advice.expect("advice when inconclusive");
+        assert!(!advice.contains("round-off"), "{advice}");
+        assert!(j.reason.contains("one outlying rung"), "{}", j.reason);
+        assert!(
+            j.reason.contains(&format!("h = {}", figure(h))),
+            "{}",
+            j.reason
+        );
+        // round-off is indeed far below the error at every rung
+        assert!(
+            rungs
+                .iter()
+                .all(|r| r.round_off_bound.unwrap() < 1e-3 * r.error.unwrap())
+        );
+    }
+
+    /// The converse: the clean rungs (above the ceiling at the coarse end)
+    /// are too few because the round-off bound reaches the error below
+    /// them; then the reason says so, with a comparison that holds.
+    #[test]
+    fn too_few_rungs_above_the_floor_are_blamed_on_round_off() {
+        let mut rungs = ladder(|h| 1500.0 * h * h);
+        for r in rungs.iter_mut().skip(10) {
+            r.round_off_bound = r.error;
+            r.round_off_sample = r.error;
+        }
+        let (_, j) = judged_at_floor(2.0, rungs);
+        assert_eq!(j.verdict, Verdict::Inconclusive, "{}", j.reason);
+        assert!(
+            j.reason.contains("round-off floor, which begins at"),
+            "{}",
+            j.reason
+        );
+        let printed = crate::measure::wording::comparisons(&j.reason).expect("readable");
+        assert!(
+            !printed.is_empty() && printed.iter().all(|c| c.holds()),
+            "{}",
+            j.reason
+        );
+        assert!(j.advice.expect("advice").contains("shorten t_end"));
     }
 }

@@ -70,6 +70,10 @@ pub struct Rung {
     pub dropped: Option<DropReason>,
     /// How the run ended.
     pub outcome: Outcome,
+    /// What an implicit scheme's solves reported over the run (iterations
+    /// per step, largest residual); absent for a scheme that reports none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solve: Option<crate::scheme::SolveTally>,
 }
 
 /// A fall of the local order below the claim at the fine end of the clean
