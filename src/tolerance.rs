@@ -154,15 +154,24 @@ pub fn order_verdict(
     measured: f64,
     interval: [f64; 2],
 ) -> Result<Option<String>, String> {
+    use crate::measure::wording::{order, vs_lower};
+    let estimate = format!(
+        "measured order {} in [{}, {}]",
+        order(measured),
+        order(interval[0]),
+        order(interval[1])
+    );
     if interval[1] < theoretical {
         return Err(format!(
-            "theoretical order {theoretical} above the measured interval [{:.4}, {:.4}]",
-            interval[0], interval[1]
+            "{estimate} lies below the theoretical order: {}",
+            vs_lower(interval[1], "theoretical order", theoretical)
         ));
     }
     if measured < theoretical - ORDER_TOLERANCE {
         return Err(format!(
-            "measured order {measured:.4} is more than {ORDER_TOLERANCE} below {theoretical}"
+            "{estimate} is more than {ORDER_TOLERANCE} below the theoretical order \
+             {theoretical}: {}",
+            vs_lower(measured, "", theoretical - ORDER_TOLERANCE)
         ));
     }
     Ok(

@@ -15,8 +15,8 @@
 
 use crate::scene::Scene;
 use crate::scheme::{
-    FOREST_RUTH, Flow, MAX_ITERATIONS, OneStep, ROUND_OFF_UNITS, Scheme, SchemeMeta,
-    SplittingTable, StepFailure, VerletComposition,
+    BlackBox, FOREST_RUTH, Flow, Force, MAX_ITERATIONS, OneStep, ROUND_OFF_UNITS, Scheme,
+    SchemeMeta, SplittingTable, Stateful, StepFailure, VELOCITY_VERLET, VerletComposition,
 };
 use crate::state::{Real, State};
 use nalgebra::SVector;
@@ -684,6 +684,47 @@ pub const LOBATTO_IIIA4: ImplicitRk<3> = ImplicitRk::new(
     ],
     [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
     [0.0, 0.5, 1.0],
+);
+
+// ------------------------------------------------------ state kept between steps
+
+/// The step of [`FSAL_VERLET`]: velocity Verlet on slices, as a black box,
+/// keeping the force at the end of each step for the next one's first kick
+/// (first same as last). The kept force is only valid for the run it came
+/// from: each run must start from an empty one.
+fn fsal_verlet_step(last: &mut Vec<f64>, q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
+    if last.len() != q.len() {
+        last.resize(q.len(), 0.0);
+        force(q, last);
+    }
+    for i in 0..q.len() {
+        v[i] += 0.5 * h * last[i];
+        q[i] += h * v[i];
+    }
+    force(q, last);
+    for i in 0..q.len() {
+        v[i] += 0.5 * h * last[i];
+    }
+}
+
+/// The type of [`fsal_verlet_step`].
+type FsalStep = fn(&mut Vec<f64>, &mut [f64], &mut [f64], f64, &Force<'_, f64>);
+
+/// The stateful black box [`FSAL_VERLET`] is.
+type FsalVerlet = BlackBox<f64, Stateful<fn() -> Vec<f64>, FsalStep>>;
+
+/// Velocity Verlet as a stateful black box (see [`fsal_verlet_step`]): one
+/// force evaluation a step, every claim of the catalogue's velocity Verlet,
+/// and correct only because every run starts from a fresh, empty state.
+pub static FSAL_VERLET: FsalVerlet = BlackBox::stateful(
+    SchemeMeta {
+        id: "verlet-fsal-black-box",
+        name: "velocity Verlet keeping its last force, as a stateful black box",
+        phase_error: None,
+        ..VELOCITY_VERLET.meta
+    },
+    Vec::new,
+    fsal_verlet_step,
 );
 
 #[cfg(test)]

@@ -44,7 +44,7 @@ pub enum Expect {
     Any,
 }
 
-/// The verdict each of the four claims must get.
+/// The verdict each of the five claims must get.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub struct Expected {
     /// The global order.
@@ -55,6 +55,8 @@ pub struct Expected {
     pub symplectic: Expect,
     /// Time symmetry (return after stepping back).
     pub reversible: Expect,
+    /// Force evaluations per step, counted.
+    pub evaluations: Expect,
 }
 
 impl Expected {
@@ -64,6 +66,7 @@ impl Expected {
         energy: Expect::Pass,
         symplectic: Expect::Pass,
         reversible: Expect::Pass,
+        evaluations: Expect::Pass,
     };
     /// Nothing judged; start from here and set the claims an entry is about.
     pub const ANY: Expected = Expected {
@@ -71,6 +74,7 @@ impl Expected {
         energy: Expect::Any,
         symplectic: Expect::Any,
         reversible: Expect::Any,
+        evaluations: Expect::Any,
     };
     /// The same with the order's verdict set.
     pub const fn order(self, e: Expect) -> Self {
@@ -91,6 +95,13 @@ impl Expected {
     pub const fn reversible(self, e: Expect) -> Self {
         Self {
             reversible: e,
+            ..self
+        }
+    }
+    /// The same with the evaluation count's verdict set.
+    pub const fn evaluations(self, e: Expect) -> Self {
+        Self {
+            evaluations: e,
             ..self
         }
     }
@@ -163,7 +174,7 @@ impl Entry {
     }
 }
 
-/// The four claims a corpus entry is judged on.
+/// The five claims a corpus entry is judged on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Claim {
@@ -175,15 +186,18 @@ pub enum Claim {
     Symplectic,
     /// Time symmetry.
     Reversible,
+    /// Force evaluations per step.
+    Evaluations,
 }
 
 impl Claim {
     /// Every claim, in the order of [`Expected`]'s fields.
-    pub const ALL: [Claim; 4] = [
+    pub const ALL: [Claim; 5] = [
         Claim::Order,
         Claim::Energy,
         Claim::Symplectic,
         Claim::Reversible,
+        Claim::Evaluations,
     ];
 
     /// The kebab-case name.
@@ -193,6 +207,7 @@ impl Claim {
             Claim::Energy => "energy",
             Claim::Symplectic => "symplectic",
             Claim::Reversible => "reversible",
+            Claim::Evaluations => "evaluations",
         }
     }
 }
@@ -205,6 +220,7 @@ impl Expected {
             Claim::Energy => self.energy,
             Claim::Symplectic => self.symplectic,
             Claim::Reversible => self.reversible,
+            Claim::Evaluations => self.evaluations,
         }
     }
 }
@@ -220,6 +236,9 @@ pub struct Judged {
     pub verdict: Verdict,
     /// The study's reason.
     pub reason: String,
+    /// What the guard for this claim prints when the verdict is not a pass
+    /// ([`crate::guard`]'s `*_failure`): the reason with the figures around it.
+    pub message: Option<String>,
 }
 
 impl Judged {
@@ -267,11 +286,24 @@ pub fn judge(entry: &Entry) -> Result<Outcome, crate::error::Error> {
     let energy = c.energy(&EnergySpec::default())?;
     let symplectic = c.symplectic(&SymplecticSpec::default())?;
     let reverse = c.reverse(&ReverseSpec::default())?;
+    let evaluations = c.evaluations();
+    use crate::guard::{
+        energy_failure, evaluation_failure, order_failure, reverse_failure, symplectic_failure,
+    };
     let verdicts = [
-        (order.verdict, order.reason),
-        (energy.verdict, energy.reason),
-        (symplectic.verdict, symplectic.reason),
-        (reverse.verdict, reverse.reason),
+        (order.verdict, order_failure(&order), order.reason),
+        (energy.verdict, energy_failure(&energy), energy.reason),
+        (
+            symplectic.verdict,
+            symplectic_failure(&symplectic),
+            symplectic.reason,
+        ),
+        (reverse.verdict, reverse_failure(&reverse), reverse.reason),
+        (
+            evaluations.verdict,
+            evaluation_failure(&evaluations),
+            evaluations.reason,
+        ),
     ];
     let scene = c.scene();
     Ok(Outcome {
@@ -282,11 +314,12 @@ pub fn judge(entry: &Entry) -> Result<Outcome, crate::error::Error> {
         claims: Claim::ALL
             .iter()
             .zip(verdicts)
-            .map(|(&claim, (verdict, reason))| Judged {
+            .map(|(&claim, (verdict, message, reason))| Judged {
                 claim,
                 expected: entry.expected.of(claim),
                 verdict,
                 reason,
+                message,
             })
             .collect(),
     })

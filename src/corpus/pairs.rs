@@ -26,6 +26,16 @@ const ORDER: Expected = Expected::ANY.order(Expect::Fail);
 pub fn correct() -> Vec<Entry> {
     vec![
         Entry::correct(
+            &FSAL_VERLET,
+            KeplerEccentric::default(),
+            "velocity Verlet as a stateful black box that keeps its last force: every claim holds when each run starts from a fresh state",
+        ),
+        Entry::correct(
+            &FSAL_VERLET,
+            FigureEight,
+            "the same on the figure-eight, without an exact solution",
+        ),
+        Entry::correct(
             &HEUN,
             eccentric(0.5),
             "explicit trapezoidal RK2: order 2 (Butcher conditions), neither symplectic nor symmetric; nothing geometric is claimed",
@@ -249,6 +259,18 @@ pub fn correct() -> Vec<Entry> {
 /// pair, long by design.
 pub fn broken() -> Vec<Entry> {
     vec![
+        Entry::broken(
+            &UNDER_CLAIMED_VERLET,
+            KeplerCircular,
+            Expected::PASS.evaluations(Expect::Fail),
+            "two force evaluations a step, one claimed: the map is velocity Verlet's, so order, energy, symplecticity and symmetry all hold, and only the count refutes the cost",
+        ),
+        Entry::broken(
+            &UNDER_CLAIMED_VERLET,
+            FigureEight,
+            Expected::PASS.evaluations(Expect::Fail),
+            "the same on the figure-eight, where each evaluation is the three bodies' forces",
+        ),
         Entry::broken(
             &FIRST_COMPONENT_KICK,
             FigureEight,

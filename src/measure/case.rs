@@ -6,6 +6,7 @@
 use crate::error::Error;
 use crate::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
 use crate::measure::accuracy::pin::{PinOutcome, check_pin};
+use crate::measure::cost::evaluations::{EvaluationRecord, counting_step, evaluations};
 use crate::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
@@ -29,6 +30,8 @@ pub trait Case: Send + Sync {
     fn symplectic(&self, spec: &SymplecticSpec) -> Result<SymplecticRecord, Error>;
     /// The forward-and-back study.
     fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error>;
+    /// The force evaluations counted against the claim.
+    fn evaluations(&self) -> EvaluationRecord;
     /// The error pin in `dir` ([`crate::measure::accuracy::pin::check_pin`]).
     fn pin(&self, dir: &std::path::Path) -> Result<PinOutcome, String>;
 }
@@ -67,6 +70,9 @@ where
     }
     fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error> {
         reversibility(self.scheme, &self.scene, spec)
+    }
+    fn evaluations(&self) -> EvaluationRecord {
+        evaluations(self.scheme, &self.scene, counting_step(&self.scene))
     }
     fn pin(&self, dir: &std::path::Path) -> Result<PinOutcome, String> {
         check_pin(self.scheme, &self.scene, dir)

@@ -10,7 +10,9 @@
 //! - [`roundoff`]: the round-off floor of the Verlet forms and its growth
 //!   over long runs;
 //! - [`cost`]: time per step, force evaluations against error, the peer;
-//! - [`hard`]: eccentric orbits, the separatrix, escape or trapped.
+//! - [`hard`]: eccentric orbits, the separatrix, escape or trapped;
+//! - [`wording`]: how reasons print figures and comparisons, and a reader
+//!   that checks every printed comparison holds.
 
 pub mod accuracy;
 pub mod adaptive;
@@ -20,6 +22,7 @@ pub mod geometry;
 pub mod hard;
 pub mod roundoff;
 pub mod stability;
+pub mod wording;
 
 use serde::Serialize;
 

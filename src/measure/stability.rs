@@ -21,6 +21,7 @@
 //! period at a few steps instead.
 
 use crate::measure::accuracy::phase::{one_step_matrix, polynomial_roots, roots_bounded};
+use crate::scene::Harmonic;
 use crate::scheme::Scheme;
 use crate::tolerance::{
     GROWTH_POWER_TOLERANCE, GROWTH_VALUE_RESOLUTION, STABILITY_BISECTION,
@@ -382,7 +383,9 @@ pub fn stability<M: Scheme>(scheme: &M) -> StabilityRecord {
         Some([Some(a), b]) if *a == 0.0 => *b,
         _ => Some(0.0),
     };
-    let evaluations = scheme.meta().force_evaluations.max(1) as f64;
+    // per evaluation actually spent: counted on the oscillator the scan runs on
+    let evaluations =
+        crate::measure::cost::evaluations::per_step_charged(scheme, &Harmonic::default()).max(1.0);
     let growth_resolution = scheme
         .recurrence_on_oscillator(SCAN_START)
         .is_none()

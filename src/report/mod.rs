@@ -788,6 +788,7 @@ pub fn corpus_entries(outcomes: &[crate::corpus::Outcome]) -> String {
         "energy",
         "symplectic",
         "reversible",
+        "evaluations",
     ]);
     for o in outcomes {
         let mut row = vec![

@@ -21,6 +21,12 @@ pub fn summary(records: &SuiteRecords) -> String {
          [Speed against error](#speed-against-error) · [Round-off](#round-off-floors) · \
          [Appendix](#appendix)\n\n",
     );
+    out.push_str(
+        "Integrators from published crates (utsuroi, differential-equations, ode_solvers, \
+         peroxide, russell_ode), audited through the same black-box adapters a user \
+         writes, each refuted claim confirmed independently of the harness: \
+         [audit/AUDIT.md](audit/AUDIT.md).\n\n",
+    );
     out.push_str(&verdict_counts(records));
     out.push_str("\n### Orders at a glance\n\n");
     out.push_str(

@@ -145,7 +145,11 @@ fn stability_json_and_scene_parameters() {
         "0.05",
     ]);
     assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stdout).contains("unstable at h = 0.05, after"));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("h = 0.05") && text.contains("unstable: blew up at step"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -45,6 +45,7 @@
 
 use crate::measure::Verdict;
 use crate::measure::accuracy::window::RoundOffModel;
+use crate::measure::wording::{figure, vs_upper};
 use crate::scene::Invariant;
 use serde::Serialize;
 
@@ -153,15 +154,14 @@ pub(crate) fn judge_invariant(
             let over = |r: &InvariantRung| r.change > r.allowed.expect("judged");
             let limit = |r: &InvariantRung| {
                 format!(
-                    "at h = {:.3e} the {name} changes by {:.3e} over the run, a solution of the \
-                     scene's equations by at most {:.3e} (sensitivity {:.3e} x error estimate \
-                     {:.3e} + round-off {:.3e})",
-                    r.h,
-                    r.change,
-                    r.allowed.expect("judged"),
-                    r.sensitivity,
-                    r.error_estimate.expect("judged"),
-                    r.round_off_bound.expect("judged"),
+                    "at h = {} the {name} changes by {} over the run (sensitivity {} x error \
+                     estimate {} + round-off {}, the most a solution of the scene's equations \
+                     changes it by)",
+                    figure(r.h),
+                    vs_upper(r.change, "allowance", r.allowed.expect("judged")),
+                    figure(r.sensitivity),
+                    figure(r.error_estimate.expect("judged")),
+                    figure(r.round_off_bound.expect("judged")),
                 )
             };
             if over(a) && over(b) {
@@ -169,15 +169,19 @@ pub(crate) fn judge_invariant(
                     Verdict::Fail,
                     format!(
                         "converges, but not to a solution of the scene's equations: the {name} \
-                         does not return to its initial value as h -> 0 ({}; at h = {:.3e}: \
-                         {:.3e})",
+                         does not return to its initial value as h -> 0: {}; at h = {}, {}",
                         limit(b),
-                        a.h,
-                        a.change
+                        figure(a.h),
+                        vs_upper(a.change, "allowance", a.allowed.expect("judged")),
                     ),
                 )
             } else {
-                (Verdict::Pass, format!("{name} conserved: {}", limit(b)))
+                // the rung that is within its allowance (the finer if both)
+                let within = if over(b) { a } else { b };
+                (
+                    Verdict::Pass,
+                    format!("{name} conserved: {}", limit(within)),
+                )
             }
         }
         _ => (

@@ -2,6 +2,7 @@
 //! one-step map against `w0`, and its leading term against the analytic one.
 
 use crate::measure::Verdict;
+use crate::measure::wording::{figure, vs_upper};
 use crate::scene::Harmonic;
 use crate::scheme::{PhaseError, Scheme};
 use crate::state::State;
@@ -161,17 +162,32 @@ pub fn phase_error<M: Scheme>(scheme: &M) -> PhaseRecord {
     let meta = scheme.meta();
     let (verdict, reason) = match (meta.phase_error, measured_power, measured_coefficient) {
         (Some(a), Some(p), Some(c)) => {
-            let ok = p.round() as u32 == a.power
-                && (c - a.coefficient).abs() <= PHASE_COEFFICIENT_TOLERANCE * a.coefficient.abs();
+            let allowance = PHASE_COEFFICIENT_TOLERANCE * a.coefficient.abs();
+            let power_ok = p.round() as u32 == a.power;
+            let ok = power_ok && (c - a.coefficient).abs() <= allowance;
             (
                 Some(Verdict::from_bool(ok)),
                 format!(
-                    "measured {c:.6} z^{p:.2}, analytic {:.6} z^{}",
-                    a.coefficient, a.power
+                    "measured {} z^{p:.2}, analytic {} z^{}: {}",
+                    figure(c),
+                    figure(a.coefficient),
+                    a.power,
+                    if power_ok {
+                        format!(
+                            "|C - C_analytic| = {} ({PHASE_COEFFICIENT_TOLERANCE} of the \
+                             analytic coefficient)",
+                            vs_upper((c - a.coefficient).abs(), "allowance", allowance)
+                        )
+                    } else {
+                        format!("the power {p:.2} is not the analytic {}", a.power)
+                    }
                 ),
             )
         }
-        (None, Some(p), Some(c)) => (None, format!("measured {c:.6} z^{p:.2}; no analytic value")),
+        (None, Some(p), Some(c)) => (
+            None,
+            format!("measured {} z^{p:.2}; no analytic value", figure(c)),
+        ),
         // a high-order scheme may have no phase error above the floor at any
         // step where it is stable: nothing is claimed, so nothing fails
         (None, _, _) => (

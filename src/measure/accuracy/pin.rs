@@ -539,26 +539,28 @@ fn compare<M: Scheme, S: Scene<D>, const D: usize>(
         });
         let arithmetic = if today > 4.0 * pin.tolerance {
             format!(
-                "; today's twins put the tolerance there at {today:.1e}, so the arithmetic \
+                "; today's twins put the tolerance there at {}, {} times the pinned one, so \
+                 the arithmetic \
                  itself rounds more than when the pin was written (a narrower float type, a \
-                 worse-conditioned evaluation)"
+                 worse-conditioned evaluation)",
+                crate::measure::wording::figure(today),
+                crate::measure::wording::vs_upper(today / pin.tolerance, "", 4.0),
             )
         } else {
             String::new()
         };
         return Err(format!(
-            "{who}: the error after {} steps of h = {:.4e} is {error:e}, pinned {:e}: it moved \
-             by {:.1e} of itself, {:.1e} times the tolerance {:.1e} (four times the \
-             round-off the twins measured there, all that another platform or a reordering \
-             of operations can move it by){arithmetic}; the scheme computes something else than \
+            "{who}: the error after {} steps of h = {} is {error:e}, pinned {:e} (every digit, \
+             to show the change): it moved by {} ({} of itself; the tolerance is four times the \
+             round-off the twins measured there, all that another platform or a reordering of \
+             operations can move it by){arithmetic}; the scheme computes something else than \
              when the pin was written. Rewrite the pin with STEPLADDER_UPDATE_PINS=1 if the \
              change is intended",
             pin.steps,
-            pin.h(),
+            crate::measure::wording::figure(pin.h()),
             pin.error,
-            change / pin.error,
-            change.abs() / pin.tolerance,
-            pin.tolerance,
+            crate::measure::wording::vs_upper(change.abs(), "tolerance", pin.tolerance),
+            crate::measure::wording::figure(change / pin.error),
         ));
     }
     Ok(PinOutcome::Agrees {

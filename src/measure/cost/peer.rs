@@ -193,6 +193,7 @@ impl AdaptiveIntegrator for Dop853Peer {
             proportionality: None,
             symplectic: false,
             symmetric: false,
+            error_factor: None,
         }
     }
 
@@ -220,6 +221,7 @@ impl AdaptiveIntegrator for Dop853Peer {
             rejected: run.rejected,
             end: run.end,
             time: run.time,
+            reported_evaluations: None,
         })
     }
 }

@@ -90,8 +90,8 @@ pub fn run_steps<M: Scheme, S: Scene<D>, const D: usize>(
 pub struct TimedRun {
     /// Wall time of the steps.
     pub time: Duration,
-    /// Force evaluations of the steps: the metadata's count per step for an
-    /// explicit scheme, the solver's iterations for an implicit one.
+    /// Force evaluations of the steps: the counted evaluations per step for
+    /// an explicit scheme, the solver's iterations for an implicit one.
     pub evaluations: u64,
     /// How the run ended ([`Outcome::Completed`] or a failed step).
     pub outcome: Outcome,
@@ -114,7 +114,15 @@ pub fn time_run<M: Scheme, S: Scene<D>, const D: usize>(
     black_box(&carry);
     let evaluations = match (before, scheme.solver_evaluations(&carry)) {
         (Some(b), Some(a)) => a - b,
-        _ => steps * scheme.meta().force_evaluations as u64,
+        // counted on the oscillator, not on `scene`: an explicit step's count
+        // does not depend on the scene, and counting runs on `scene` itself
+        // would add to the calls a caller counts there
+        _ => (steps as f64
+            * crate::measure::cost::evaluations::per_step_charged(
+                scheme,
+                &crate::scene::Harmonic::default(),
+            ))
+        .round() as u64,
     };
     let outcome = match result {
         Ok(()) => Outcome::Completed,

@@ -268,7 +268,8 @@ fn exact_point<M: Scheme, S: Scene<D> + Clone, const D: usize>(
         let _ = integrate(scheme, &counted, &counted.initial(), h, steps, |_, _, _| {});
         counted.evaluations()
     } else {
-        start_evaluations(scheme, scene, h) + steps * scheme.meta().force_evaluations as u64
+        let per_step = crate::measure::cost::evaluations::per_step_charged(scheme, scene);
+        start_evaluations(scheme, scene, h) + (steps as f64 * per_step).round() as u64
     };
     Some(WorkPoint {
         h,
@@ -280,7 +281,8 @@ fn exact_point<M: Scheme, S: Scene<D> + Clone, const D: usize>(
 
 /// The order study's rungs as work points: the steps and errors of `record`
 /// with the force evaluations each rung spent. For an explicit scheme they
-/// are the start-up's plus `force_evaluations` per step taken; an implicit
+/// are the start-up's plus the counted evaluations per step
+/// ([`crate::measure::cost::evaluations`]) per step taken; an implicit
 /// scheme's rungs are run again on a counting scene, since the iterations of
 /// its solve vary with the step.
 pub fn global_points<M: Scheme, S: Scene<D> + Clone, const D: usize>(
@@ -289,6 +291,7 @@ pub fn global_points<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     record: &OrderRecord,
 ) -> Vec<WorkPoint> {
     let meta = scheme.meta();
+    let per_step = crate::measure::cost::evaluations::per_step_charged(scheme, scene);
     record
         .rungs
         .iter()
@@ -311,7 +314,7 @@ pub fn global_points<M: Scheme, S: Scene<D> + Clone, const D: usize>(
                 );
                 counted.evaluations()
             } else {
-                start_evaluations(scheme, scene, rung.h) + taken * meta.force_evaluations as u64
+                start_evaluations(scheme, scene, rung.h) + (taken as f64 * per_step).round() as u64
             };
             WorkPoint {
                 h: rung.h,

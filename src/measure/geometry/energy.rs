@@ -16,6 +16,7 @@ use crate::error::Error;
 use crate::ladder::{check_cost, steps_for};
 use crate::measure::Verdict;
 use crate::measure::accuracy::fit::power_law;
+use crate::measure::wording::{figure, vs_upper};
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
@@ -49,15 +50,46 @@ pub const RESOLVED_EXCURSION: f64 = 0.1;
 /// after the first).
 pub const MAX_HALVINGS: u32 = 8;
 
+/// How the step of a run was chosen, which its reason states.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum StepChoice {
+    /// Given by the spec, or the default for a claim of neither property.
+    Given,
+    /// The default halved `halvings` times, the first step whose energy
+    /// excursion over the first period is within [`RESOLVED_EXCURSION`].
+    Resolving { halvings: u32, excursion: f64 },
+    /// Halved [`MAX_HALVINGS`] times without resolving the first period:
+    /// its excursion at the finest step, `None` if that run blew up.
+    Unresolved { excursion: Option<f64> },
+    /// Halved `halvings` times to confirm a refutation at a coarser step.
+    Confirming { halvings: u32 },
+}
+
+impl StepChoice {
+    fn halvings(self) -> u32 {
+        match self {
+            StepChoice::Given => 0,
+            StepChoice::Resolving { halvings, .. } | StepChoice::Confirming { halvings } => {
+                halvings
+            }
+            StepChoice::Unresolved { .. } => MAX_HALVINGS,
+        }
+    }
+}
+
 /// The default step halved until the energy's excursion over one period is
-/// within [`RESOLVED_EXCURSION`] (at most [`MAX_HALVINGS`] times), and the
-/// halvings made.
-fn resolving_step<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> (f64, u32) {
+/// within [`RESOLVED_EXCURSION`] (at most [`MAX_HALVINGS`] times), and how
+/// it was found.
+fn resolving_step<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+) -> (f64, StepChoice) {
     let period = scene.period();
     let start = scene.initial();
     let e0 = scene.energy(&start);
     let norm = energy_norm(scene);
     let mut h = DEFAULT_STEP * period;
+    let mut last = None;
     for halvings in 0..MAX_HALVINGS {
         let steps = (period / h).round() as u64;
         let mut excursion = 0.0f64;
@@ -65,11 +97,18 @@ fn resolving_step<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S)
             excursion = excursion.max((scene.energy(s) - e0).abs() / norm);
         });
         if outcome.completed() && excursion <= RESOLVED_EXCURSION {
-            return (h, halvings);
+            return (
+                h,
+                StepChoice::Resolving {
+                    halvings,
+                    excursion,
+                },
+            );
         }
+        last = outcome.completed().then_some(excursion);
         h /= 2.0;
     }
-    (h, MAX_HALVINGS)
+    (h, StepChoice::Unresolved { excursion: last })
 }
 
 /// What relative energy errors are relative to: `|E0|`, or for a scene with
@@ -179,12 +218,12 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
     // a symplectic or a symmetric scheme promises no secular drift
     let conserves = meta.symplectic || meta.symmetric;
     let periods = crate::scene::positive("periods", spec.periods.unwrap_or(DEFAULT_PERIODS))?;
-    let (h, halvings) = match spec.h {
-        Some(h) => (crate::scene::positive("h", h)?, 0),
+    let (h, choice) = match spec.h {
+        Some(h) => (crate::scene::positive("h", h)?, StepChoice::Given),
         None if conserves => resolving_step(scheme, scene),
-        None => (DEFAULT_STEP * scene.period(), 0),
+        None => (DEFAULT_STEP * scene.period(), StepChoice::Given),
     };
-    let first = energy_at(scheme, scene, h, halvings, periods)?;
+    let first = energy_at(scheme, scene, h, choice, periods)?;
     if spec.h.is_some() || !conserves || first.verdict != Verdict::Fail {
         return Ok(first);
     }
@@ -196,57 +235,113 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
     // only if the energy still drifts at half the step, in a run whose every
     // step changed the energy by less than RESOLVED_EXCURSION; while steps
     // jump by more, the step is halved again.
+    let claims = Claims::of(meta.symplectic, meta.symmetric);
+    let first_h = first.h;
     let mut record = first;
-    let mut notes: Vec<String> = Vec::new();
-    for k in halvings + 1..=MAX_HALVINGS {
-        notes.push(format!("at h = {:.3e}: {}", record.h, record.summary));
-        let finer = energy_at(scheme, scene, record.h / 2.0, k, periods)?;
-        let resolved = finer.largest_step_change[0] <= RESOLVED_EXCURSION;
-        let (verdict, note) = match (finer.verdict, finer.class) {
-            (Verdict::Fail, _) if resolved => (Some(Verdict::Fail), "confirmed at half the step"),
-            (Verdict::Fail, _) => (None, ""),
-            (Verdict::Pass, Some(EnergyClass::Bounded)) => (
-                Some(Verdict::Pass),
-                "bounded at half the step: the coarser step did not resolve the motion well \
-                 enough for the claim to apply",
-            ),
-            _ => (
-                Some(Verdict::Inconclusive),
-                "at half the step the change is within round-off: a drift that small cannot be \
-                 told from a step that did not resolve the motion; take a step between the two",
-            ),
-        };
-        record = finer;
-        if let Some(v) = verdict {
-            record.verdict = v;
-            record.reason = format!("{} ({}; {note})", record.reason, notes.join("; "));
-            return Ok(record);
+    for k in choice.halvings() + 1..=MAX_HALVINGS {
+        let finer = energy_at(
+            scheme,
+            scene,
+            record.h / 2.0,
+            StepChoice::Confirming { halvings: k },
+            periods,
+        )?;
+        match confirm(&record, finer, scheme.epsilon()) {
+            Weighed::Decided(decided) => return Ok(decided),
+            Weighed::HalveAgain(finer) => record = finer,
         }
     }
+    let [change, at] = record.largest_step_change;
     record.verdict = Verdict::Inconclusive;
     record.reason = format!(
-        "{}: steps still change the energy by more than {RESOLVED_EXCURSION} of E0 (a close \
-         encounter, a pericentre, not resolved) at h = {:.3e}, so the claim cannot be tested \
-         ({})",
+        "{} at h = {}: one step changes the energy by {} of E0 (at t = {}; a close \
+         encounter, a pericentre, not resolved), and so did a step at every step size tried \
+         from h = {} down, so {} cannot be tested; take a smaller step (EnergySpec::h)",
         record.summary,
-        record.h,
-        notes.join("; ")
+        figure(record.h),
+        vs_upper(change, "", RESOLVED_EXCURSION),
+        figure(at),
+        figure(first_h),
+        claims.name,
     );
     Ok(record)
 }
 
-/// The energy study at the step `h`, `halvings` times the default: the run
+/// What the run at half the step makes of a refutation.
+enum Weighed {
+    /// The verdict is reached, with the record that states it.
+    Decided(EnergyRecord),
+    /// The finer run failed too without resolving every step: halve again.
+    HalveAgain(EnergyRecord),
+}
+
+/// A refutation at the step of `coarser` weighed by the run at half that
+/// step.
+fn confirm(coarser: &EnergyRecord, finer: EnergyRecord, epsilon: f64) -> Weighed {
+    let at_coarser = format!("at h = {}: {}", figure(coarser.h), coarser.summary);
+    let [change, _] = finer.largest_step_change;
+    let (verdict, reason) = match (finer.verdict, finer.class) {
+        (Verdict::Fail, _) if change <= RESOLVED_EXCURSION => (
+            Verdict::Fail,
+            format!(
+                "{}; confirmed at half the step, h = {}, where one step changes the energy by \
+                 {} of E0 ({at_coarser})",
+                finer.reason,
+                figure(finer.h),
+                vs_upper(change, "", RESOLVED_EXCURSION),
+            ),
+        ),
+        (Verdict::Fail, _) => return Weighed::HalveAgain(finer),
+        (Verdict::Pass, Some(EnergyClass::Bounded)) => (
+            Verdict::Pass,
+            format!(
+                "{}: bounded at half the step, h = {}, so the coarser step did not resolve the \
+                 motion well enough for the claim to apply ({at_coarser})",
+                finer.reason,
+                figure(finer.h),
+            ),
+        ),
+        // a conserving claim passes a run that is not bounded only when its
+        // growth stays within round-off: neither run decides
+        (Verdict::Pass, _) => (
+            Verdict::Inconclusive,
+            format!(
+                "{at_coarser}; at half the step, h = {}: {}, {}: a change that small cannot be \
+                 told from round-off, nor the coarser step's drift from a step that did not \
+                 resolve the motion; take a step between the two (EnergySpec::h)",
+                figure(finer.h),
+                class_head(finer.class, finer.growth_exponent),
+                round_off_comparison(finer.max_relative_energy_error, finer.steps, epsilon),
+            ),
+        ),
+        (Verdict::Inconclusive, _) => (
+            Verdict::Inconclusive,
+            format!(
+                "at half the step, h = {}: {} ({at_coarser})",
+                figure(finer.h),
+                finer.reason
+            ),
+        ),
+    };
+    Weighed::Decided(EnergyRecord {
+        verdict,
+        reason,
+        ..finer
+    })
+}
+
+/// The energy study at the step `h`, chosen as `choice` says: the run
 /// keeps its number of steps, `periods` of the default step, so its length
 /// in periods shrinks with the step.
 fn energy_at<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
     h: f64,
-    halvings: u32,
+    choice: StepChoice,
     periods: f64,
 ) -> Result<EnergyRecord, Error> {
     let meta = scheme.meta();
-    let periods = periods / f64::from(1u32 << halvings);
+    let periods = periods / f64::from(1u32 << choice.halvings());
     let t_end = periods * scene.period();
     let steps = steps_for(t_end, h)?;
     check_cost(steps)?;
@@ -256,12 +351,8 @@ fn energy_at<M: Scheme, S: Scene<D>, const D: usize>(
     let class = trace.class(lost_at, growth.exponent);
     let claims = Claims::of(meta.symplectic, meta.symmetric);
     let measured = trace.describe(lost_at, class, growth.exponent);
-    // a drift-like slope that only the round-off allowance classed as a
-    // random walk: a drift this small cannot be told from round-off
-    let drift_within_round_off = class == Some(EnergyClass::RandomWalk)
-        && growth.exponent.map(classify_growth) == Some(EnergyClass::Drifting);
-    let (verdict, reason) = claims.judge(&trace, lost_at, class, drift_within_round_off, &measured);
-    let (verdict, reason) = at_resolving_step(claims.conserves, verdict, reason, h, halvings);
+    let (verdict, reason) = claims.judge(&trace, lost_at, class, growth.exponent, &measured);
+    let (verdict, reason) = at_chosen_step(claims.conserves, verdict, reason, &measured, h, choice);
     Ok(EnergyRecord {
         scheme: meta.id,
         scene: scene.meta().id,
@@ -454,27 +545,51 @@ impl EnergyTrace {
         class: Option<EnergyClass>,
         growth_exponent: Option<f64>,
     ) -> String {
-        let running = self.running;
-        match (class, growth_exponent) {
-            _ if !self.outcome.completed() => {
-                format!(
-                    "{}: the energy grew by {running:.2e} of E0 before",
-                    self.outcome
-                )
-            }
-            _ if lost_at.is_some() => format!(
-                "orbit lost at t = {:.4} (escaped, or an energy error past {LOST_FRACTION} of E0 \
-                 that kept growing), to {running:.2e}",
-                lost_at.unwrap_or_default(),
+        let running = figure(self.running);
+        match (class, lost_at) {
+            _ if !self.outcome.completed() => format!(
+                "{}, the energy error having reached {running} of E0",
+                self.outcome.brief()
             ),
-            (Some(c), g) => format!(
-                "{}{}, max relative error {running:.2e}",
-                c.name(),
-                g.map_or(String::new(), |g| format!(" (g = {g:.2})")),
+            (_, Some(t)) => format!(
+                "orbit lost at t = {} (escaped, or an energy error past {LOST_FRACTION} of E0 \
+                 that kept growing), max relative error {running}",
+                figure(t),
             ),
-            (None, _) => "too few samples to fit a growth law".to_string(),
+            (Some(_), None) => format!(
+                "{}, max relative error {running}",
+                class_head(class, growth_exponent)
+            ),
+            (None, None) => "too few samples to fit a growth law".to_string(),
         }
     }
+}
+
+/// The class and exponent of a growth law: "drifting (g = 1.00)". A
+/// drift-like exponent classed as round-off (its error within what
+/// round-off can produce) is called so, not a random walk.
+fn class_head(class: Option<EnergyClass>, growth_exponent: Option<f64>) -> String {
+    let exponent = growth_exponent.map_or(String::new(), |g| format!(" (g = {g:.2})"));
+    match class {
+        Some(EnergyClass::RandomWalk)
+            if growth_exponent.map(classify_growth) == Some(EnergyClass::Drifting) =>
+        {
+            format!("drift-like growth{exponent}")
+        }
+        Some(c) => format!("{}{exponent}", c.name()),
+        None => format!("no class{exponent}"),
+    }
+}
+
+/// The largest relative energy error against what round-off alone can
+/// produce in `steps` steps ([`round_off_energy`]).
+fn round_off_comparison(running: f64, steps: u64, epsilon: f64) -> String {
+    let allowance = round_off_energy(steps, epsilon);
+    format!(
+        "max relative error {} ({} eps a step over {steps} steps)",
+        vs_upper(running, "round-off allowance", allowance),
+        figure(allowance / (epsilon * steps.max(1) as f64)),
+    )
 }
 
 /// What a scheme's two geometric claims promise of its energy.
@@ -513,12 +628,18 @@ impl Claims {
         trace: &EnergyTrace,
         lost_at: Option<f64>,
         class: Option<EnergyClass>,
-        drift_within_round_off: bool,
+        growth_exponent: Option<f64>,
         measured: &str,
     ) -> (Verdict, String) {
         let (conserves, claims) = (self.conserves, self.name);
         let completed = trace.outcome.completed();
         let round_off = round_off_energy(trace.taken, trace.epsilon);
+        // the growth law beside the round-off it was classed against
+        let against_round_off = format!(
+            "{}, {}",
+            class_head(class, growth_exponent),
+            round_off_comparison(trace.running, trace.taken, trace.epsilon)
+        );
         match class {
             // a blow-up at this step, before the orbit was lost to a growing
             // error, says nothing about conservation below the scheme's
@@ -532,47 +653,55 @@ impl Claims {
                      time scale"
                 ),
             ),
-            _ if conserves && !completed => (
+            _ if conserves && (!completed || lost_at.is_some()) => (
                 Verdict::Fail,
                 format!("{measured}: {claims} must not drift"),
             ),
             Some(EnergyClass::Drifting) if conserves => (
                 Verdict::Fail,
-                format!("{measured}: {claims} must not drift"),
+                format!("{against_round_off}: {claims} must not drift"),
             ),
             // a symplectic map's energy error is bounded; one that wanders
             // like a random walk far above what round-off can do is not
             // conserved
             Some(EnergyClass::RandomWalk) if conserves && trace.running > round_off => (
                 Verdict::Fail,
-                format!(
-                    "{measured}, above what round-off can produce ({round_off:.2e}): {claims} \
-                     must not wander"
-                ),
+                format!("{against_round_off}: {claims} must not wander"),
             ),
             // in f32 the allowance 10 eps N reaches 1 at 10^6 steps, so a
             // slow drift can hide in it: say so rather than "no drift"
-            Some(_) if conserves && drift_within_round_off => (
+            Some(EnergyClass::RandomWalk) if conserves => (
                 Verdict::Pass,
                 format!(
-                    "{measured}: the growth looks like a drift but stays within what round-off \
-                     of this arithmetic can produce ({round_off:.2e}), so it refutes nothing; \
-                     the symplecticity study decides"
+                    "{against_round_off}: a growth this small cannot be told from the round-off \
+                     of this arithmetic, so this run cannot refute the claims of \
+                     {claims}; the symplecticity study decides"
                 ),
             ),
             Some(_) if conserves => (
                 Verdict::Pass,
                 format!("{measured}: no secular drift, as {claims} promises"),
             ),
-            Some(EnergyClass::Drifting) => (
+            _ if !completed || lost_at.is_some() => (
                 Verdict::Pass,
                 format!("{measured}, as expected of {claims}"),
+            ),
+            Some(EnergyClass::Drifting) => (
+                Verdict::Pass,
+                format!("{against_round_off}, as expected of {claims}"),
+            ),
+            Some(EnergyClass::RandomWalk) if trace.running > round_off => (
+                Verdict::Pass,
+                format!(
+                    "{against_round_off}: a growth slower than a drift; {claims} promises \
+                     nothing (reported, not a refutation)"
+                ),
             ),
             Some(EnergyClass::RandomWalk) => (
                 Verdict::Pass,
                 format!(
-                    "{measured}: no drift resolved above round-off; {claims} may drift below \
-                     it (reported, not a refutation)"
+                    "{against_round_off}: no drift resolved above round-off; {claims} may \
+                     drift below it (reported, not a refutation)"
                 ),
             ),
             Some(EnergyClass::Bounded) => (
@@ -582,40 +711,55 @@ impl Claims {
                      the energy happens to stay bounded refutes nothing"
                 ),
             ),
-            None => (Verdict::Inconclusive, measured.to_string()),
+            None => (
+                Verdict::Inconclusive,
+                format!("{measured}: run longer (EnergySpec::periods)"),
+            ),
         }
     }
 }
 
-/// Says at which step a verdict was reached when the default step was
-/// halved, and makes a conservation claim inconclusive when even the finest
-/// step did not resolve the motion.
-fn at_resolving_step(
+/// Says how the step was chosen when the default step was halved to
+/// resolve the first period, and makes a conservation claim inconclusive
+/// when even the finest step did not resolve it.
+fn at_chosen_step(
     conserves: bool,
     verdict: Verdict,
     reason: String,
+    measured: &str,
     h: f64,
-    halvings: u32,
+    choice: StepChoice,
 ) -> (Verdict, String) {
-    let reason = match verdict {
-        Verdict::Pass | Verdict::Fail if halvings > 0 => format!(
-            "{reason} (at h = {h:.3e}, {halvings} halving{} of the default step, the first \
-             step whose energy excursion over one period is within {RESOLVED_EXCURSION} of E0)",
-            if halvings > 1 { "s" } else { "" }
+    match choice {
+        StepChoice::Resolving {
+            halvings,
+            excursion,
+        } if halvings > 0 && verdict != Verdict::Inconclusive => (
+            verdict,
+            format!(
+                "{reason} (at h = {}, {halvings} halving{} of the default step, the first at \
+                 which the energy's excursion over the first period is {} of E0)",
+                figure(h),
+                if halvings > 1 { "s" } else { "" },
+                vs_upper(excursion, "", RESOLVED_EXCURSION),
+            ),
         ),
-        _ => reason,
-    };
-    if conserves && halvings >= MAX_HALVINGS {
-        (
+        StepChoice::Unresolved { excursion } if conserves => (
             Verdict::Inconclusive,
             format!(
-                "{reason}; the motion is not resolved even at h = {h:.3e}: its energy changes by \
-                 more than {RESOLVED_EXCURSION} of E0 within a period, so no conservation law \
-                 applies yet; check that the scene's period is its shortest time scale"
+                "{measured} at h = {}; but {} at h = {}, the finest step tried ({} halvings of \
+                 the default), so the step does not resolve the motion and no conservation law \
+                 applies yet; check that the scene's period is its shortest time scale",
+                figure(h),
+                excursion.map_or("the first period blows up".to_string(), |e| format!(
+                    "the energy's excursion over the first period is {} of E0",
+                    vs_upper(e, "", RESOLVED_EXCURSION)
+                )),
+                figure(2.0 * h),
+                MAX_HALVINGS - 1,
             ),
-        )
-    } else {
-        (verdict, reason)
+        ),
+        _ => (verdict, reason),
     }
 }
 
@@ -629,5 +773,121 @@ pub fn classify_growth(g: f64) -> EnergyClass {
         EnergyClass::RandomWalk
     } else {
         EnergyClass::Drifting
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::wording::comparisons;
+
+    /// A completed run of `steps` steps in `f64` whose running maximum
+    /// ends at `running`.
+    fn trace(running: f64, steps: u64) -> EnergyTrace {
+        EnergyTrace {
+            outcome: Outcome::Completed,
+            e0: -0.5,
+            samples: Vec::new(),
+            drift_samples: Vec::new(),
+            running,
+            last: running,
+            taken: steps,
+            epsilon: f64::EPSILON / 2.0,
+            t_first: 0.1,
+            after_one_period: Some(running / 100.0),
+            past_lost_fraction: None,
+            unbound: None,
+            largest_step_change: [running / steps as f64, 1.0],
+        }
+    }
+
+    /// The record `energy_at` makes of `trace` with growth exponent `g`,
+    /// judged as the claims of a symplectic scheme.
+    fn judged(trace: EnergyTrace, g: f64, h: f64) -> EnergyRecord {
+        let claims = Claims::of(true, false);
+        let class = trace.class(None, Some(g));
+        let measured = trace.describe(None, class, Some(g));
+        let (verdict, reason) = claims.judge(&trace, None, class, Some(g), &measured);
+        EnergyRecord {
+            scheme: "test",
+            scene: "test",
+            h,
+            steps: trace.taken,
+            periods: 1e4,
+            outcome: Outcome::Completed,
+            initial_energy: trace.e0,
+            max_relative_energy_error: trace.running,
+            final_relative_energy_error: trace.last,
+            largest_step_change: trace.largest_step_change,
+            lost_at: None,
+            growth_exponent: Some(g),
+            fit_range: None,
+            class,
+            expected: claims.expected(),
+            verdict,
+            reason,
+            summary: measured,
+            samples: Vec::new(),
+        }
+    }
+
+    /// A drift (g = 1.00, far above round-off) at the first resolving step,
+    /// and at half the step the same exponent within round-off: the run at
+    /// half the step passes on its own, and neither decides. The reason
+    /// must say what was measured at both steps, set the error against the
+    /// round-off allowance it is within, and must not carry the passing
+    /// run's "does not refute" into an inconclusive verdict.
+    #[test]
+    fn a_drift_at_one_step_and_round_off_at_half_of_it_is_inconclusive_and_says_why() {
+        let steps = 1_000_000;
+        let coarser = judged(trace(3.4e-2, steps), 1.0, 0.01);
+        assert_eq!(coarser.verdict, Verdict::Fail, "{}", coarser.reason);
+        let allowance = round_off_energy(steps, f64::EPSILON / 2.0);
+        let finer = judged(trace(0.5 * allowance, steps), 1.0, 0.005);
+        assert_eq!(finer.verdict, Verdict::Pass, "{}", finer.reason);
+        assert_eq!(finer.growth_exponent, Some(1.0));
+        let Weighed::Decided(decided) = confirm(&coarser, finer, f64::EPSILON / 2.0) else {
+            panic!("a pass at half the step decides")
+        };
+        let reason = &decided.reason;
+        assert_eq!(decided.verdict, Verdict::Inconclusive, "{reason}");
+        assert!(!reason.contains("refute"), "{reason}");
+        assert!(
+            reason.contains("at h = 1.00e-2") && reason.contains("h = 5.00e-3"),
+            "{reason}"
+        );
+        let printed = comparisons(reason).expect("readable");
+        assert!(printed.iter().all(|c| c.holds()), "{reason}");
+        // the finer run's error within the allowance, as the advice says
+        assert!(
+            printed
+                .iter()
+                .any(|c| c.operator == "<=" && c.right > c.left),
+            "{reason}"
+        );
+    }
+
+    /// A run at a step that never resolved the first period: whatever the
+    /// run's own verdict said ("no secular drift, as ... promises"), the
+    /// inconclusive reason states what was measured and why no law applies.
+    #[test]
+    fn an_unresolved_step_does_not_repeat_a_passing_verdict() {
+        let (verdict, reason) = at_chosen_step(
+            true,
+            Verdict::Pass,
+            "bounded (g = 0.05), max relative error 2.57: no secular drift, as a symplectic \
+             scheme promises"
+                .to_string(),
+            "bounded (g = 0.05), max relative error 2.57",
+            2.7e-4,
+            StepChoice::Unresolved {
+                excursion: Some(2.5),
+            },
+        );
+        assert_eq!(verdict, Verdict::Inconclusive);
+        assert!(!reason.contains("promises"), "{reason}");
+        let printed = comparisons(&reason).expect("readable");
+        assert_eq!(printed.len(), 1, "{reason}");
+        assert!(printed[0].holds() && printed[0].left == 2.5, "{reason}");
     }
 }

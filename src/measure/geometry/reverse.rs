@@ -5,6 +5,7 @@ use crate::error::Error;
 use crate::ladder::check_cost;
 use crate::measure::Verdict;
 use crate::measure::geometry::energy::MAX_HALVINGS;
+use crate::measure::wording::{figure, vs_upper};
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
@@ -108,14 +109,27 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
     let tolerance_ulps = reverse_tolerance_ulps(steps, growth);
     let measured = return_ulps.is_some_and(|u| u <= tolerance_ulps);
     let halved = if halvings > 0 {
-        format!(" (at h = {h:.6e}, after {halvings} halvings of the step blew up)")
+        format!(
+            " at h = {}, the round trip having blown up at {}",
+            figure(h),
+            if halvings > 1 {
+                format!("each of the {halvings} coarser steps")
+            } else {
+                "twice that step".to_string()
+            }
+        )
     } else {
         String::new()
     };
     let (verdict, reason) = judge(
         return_ulps,
         meta.symmetric,
-        tolerance_ulps,
+        Allowance {
+            ulps: tolerance_ulps,
+            steps,
+            growth,
+        },
+        h,
         &halved,
         &outcome,
     );
@@ -136,6 +150,14 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
     })
 }
 
+/// The round-off a round trip may return with, and what it is made of
+/// (see [`reverse_tolerance_ulps`]).
+struct Allowance {
+    ulps: f64,
+    steps: u64,
+    growth: f64,
+}
+
 /// The verdict on a symmetry claim from the return error in ulps (`None`
 /// when the round trip blew up). A claim of time symmetry is refuted by one
 /// round trip that does not return; a claim that the scheme is not
@@ -143,28 +165,39 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
 fn judge(
     return_ulps: Option<f64>,
     claimed_symmetric: bool,
-    tolerance_ulps: f64,
+    allowance: Allowance,
+    h: f64,
     halved: &str,
-    outcome: &impl std::fmt::Display,
+    outcome: &Outcome,
 ) -> (Verdict, String) {
-    let measured = return_ulps.is_some_and(|u| u <= tolerance_ulps);
+    let measured = return_ulps.is_some_and(|u| u <= allowance.ulps);
+    let (steps, growth) = (allowance.steps as f64, allowance.growth.max(1.0));
     match (return_ulps, claimed_symmetric) {
         (None, true) => (
             Verdict::Inconclusive,
             format!(
-                "the round trip blew up ({outcome}) at {MAX_HALVINGS} halvings of the step: a \
-             time-symmetric scheme returns only from stable steps; take a smaller step \
-             (ReverseSpec::h)"
+                "the round trip did not complete ({}) at any step down to h = {} ({MAX_HALVINGS} halvings): a \
+                 time-symmetric scheme returns only from stable steps; take a smaller step \
+                 (ReverseSpec::h)",
+                outcome.brief(),
+                figure(h)
             ),
         ),
         (None, false) => (
             Verdict::Pass,
-            format!("the round trip blew up ({outcome}): not time-symmetric, as claimed"),
+            format!(
+                "the round trip did not complete ({}): not time-symmetric, as claimed",
+                outcome.brief()
+            ),
         ),
         (Some(u), claimed) => {
             let found = format!(
-                "returns within {u:.3} ulps ({} {tolerance_ulps}){halved}",
-                if measured { "<=" } else { ">" }
+                "return error in units of eps x scale {} ({} a step over {} steps there and \
+                 back, magnified {} times by the flow){halved}",
+                vs_upper(u, "allowance", allowance.ulps),
+                figure(allowance.ulps / (2.0 * steps * growth)),
+                2 * allowance.steps,
+                figure(growth),
             );
             match (claimed, measured) {
                 (true, true) => (
@@ -175,7 +208,10 @@ fn judge(
                     Verdict::Fail,
                     format!("{found}: not time-symmetric, though claimed"),
                 ),
-                (false, false) => (Verdict::Pass, format!("{found}: not time-symmetric")),
+                (false, false) => (
+                    Verdict::Pass,
+                    format!("{found}: not time-symmetric, as claimed"),
+                ),
                 (false, true) => (
                     Verdict::Pass,
                     format!(
