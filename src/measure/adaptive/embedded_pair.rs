@@ -184,6 +184,7 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
             proportionality: Some(proportionality_exponent(p, power)),
             symplectic: self.table.meta.symplectic,
             symmetric: self.table.meta.symmetric,
+            error_factor: None,
         }
     }
 
@@ -219,6 +220,7 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
             rejected: 0,
             end: RunEnd::Reached,
             time: Default::default(),
+            reported_evaluations: None,
         };
         let mut t = 0.0;
         let mut just_rejected = false;

@@ -51,6 +51,11 @@ pub struct AdaptiveRun<const D: usize> {
     /// Wall time of the run (machine-dependent; never in a deterministic
     /// record).
     pub time: Duration,
+    /// What the integrator reported it spent, where that differs in source
+    /// from `evaluations` (a black box's own statistics, against the calls
+    /// counted on its force callback); `None` where the count is the only
+    /// figure.
+    pub reported_evaluations: Option<u64>,
 }
 
 /// What an adaptive integrator's theory predicts, for the studies to check.
@@ -69,6 +74,21 @@ pub struct AdaptiveClaims {
     pub symplectic: bool,
     /// The method is time-symmetric (no adaptive pair here is).
     pub symmetric: bool,
+    /// A bound the user states on the achieved error: at every tolerance
+    /// the ladder resolves, the global error is at most `factor x TOL`
+    /// (`None`: nothing claimed). Set with [`AdaptiveClaims::within`].
+    pub error_factor: Option<f64>,
+}
+
+impl AdaptiveClaims {
+    /// The same claims with the achieved-error bound `error <= factor x
+    /// TOL` stated.
+    pub const fn within(self, factor: f64) -> Self {
+        Self {
+            error_factor: Some(factor),
+            ..self
+        }
+    }
 }
 
 /// An integrator that chooses its own steps for a tolerance. Relative and

@@ -7,15 +7,21 @@
 //!   in [`crate::measure::cost::peer`]);
 //! - [`embedded_pair`]: an embedded Runge-Kutta-Nyström pair with the
 //!   standard step-size controller;
+//! - [`black_box`]: an adaptive integrator from any crate, given as a
+//!   function from `t0` to `t1` at a tolerance;
 //! - [`tolerance_ladder`]: the study.
 
+pub mod black_box;
 pub mod embedded_pair;
 pub mod integrator;
+pub mod pin;
 pub mod tolerance_ladder;
 
+pub use black_box::{AdaptiveBlackBox, Advance};
 pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
 pub use integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
+pub use pin::{AdaptivePin, AdaptivePinOutcome, check_adaptive_pin};
 pub use tolerance_ladder::{
-    ToleranceLadderRecord, ToleranceLadderSpec, TolerancePoint, proportionality_exponent,
-    tolerance_ladder,
+    AdaptiveClaim, JudgedClaim, ToleranceLadderRecord, ToleranceLadderSpec, TolerancePoint,
+    proportionality_exponent, tolerance_ladder,
 };

@@ -158,6 +158,9 @@ pub struct TolerancePoint {
     pub round_off: f64,
     /// The point entered the exponent's fit.
     pub fitted: bool,
+    /// What the integrator reported it spent, where it reports it apart
+    /// from the counted `evaluations` (a black box's statistics).
+    pub reported_evaluations: Option<u64>,
 }
 
 /// The fitted exponent of `e ~ TOL^k` against its theory.
@@ -252,13 +255,75 @@ pub struct ToleranceLadderRecord {
     pub energy: Option<EnergyGrowth>,
     /// The round trip.
     pub round_trip: Option<RoundTrip>,
-    /// The claims against the measurements.
+    /// Each claim against its measurement, in the order of
+    /// [`AdaptiveClaim::ALL`] (a claim with nothing to judge is absent).
+    pub judged: Vec<JudgedClaim>,
+    /// All claims together: a failure if any failed, else inconclusive if
+    /// any was, else a pass.
     pub verdict: Verdict,
-    /// Why, in one line.
+    /// Why, in one line: the judged claims' reasons in turn.
+    pub reason: String,
+}
+
+/// One claim an adaptive integrator is judged on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AdaptiveClaim {
+    /// The global error follows `TOL^(p/(q+1))`.
+    Exponent,
+    /// The global error stays within the stated factor of the tolerance.
+    ErrorFactor,
+    /// The accepted steps grow no faster than the controller allows.
+    Cost,
+    /// What the integrator reports it spent equals the calls counted.
+    Evaluations,
+    /// The energy of a long run, against a symplecticity or symmetry claim.
+    Energy,
+    /// The round trip, against a symmetry claim.
+    RoundTrip,
+}
+
+impl AdaptiveClaim {
+    /// Every claim, in the order the record lists them.
+    pub const ALL: [AdaptiveClaim; 6] = [
+        AdaptiveClaim::Exponent,
+        AdaptiveClaim::ErrorFactor,
+        AdaptiveClaim::Cost,
+        AdaptiveClaim::Evaluations,
+        AdaptiveClaim::Energy,
+        AdaptiveClaim::RoundTrip,
+    ];
+
+    /// Its name in test names and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            AdaptiveClaim::Exponent => "exponent",
+            AdaptiveClaim::ErrorFactor => "error factor",
+            AdaptiveClaim::Cost => "cost",
+            AdaptiveClaim::Evaluations => "evaluations",
+            AdaptiveClaim::Energy => "energy",
+            AdaptiveClaim::RoundTrip => "round trip",
+        }
+    }
+}
+
+/// One claim's verdict with its figures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct JudgedClaim {
+    /// The claim.
+    pub claim: AdaptiveClaim,
+    /// Pass, fail or inconclusive.
+    pub verdict: Verdict,
+    /// Why, with the figures.
     pub reason: String,
 }
 
 impl ToleranceLadderRecord {
+    /// The verdict on one claim, if it had anything to judge.
+    pub fn claim(&self, claim: AdaptiveClaim) -> Option<&JudgedClaim> {
+        self.judged.iter().find(|j| j.claim == claim)
+    }
+
     /// The force evaluations to reach each of the work-precision study's
     /// target global errors ([`crate::measure::cost::work_points::TARGETS`]),
     /// interpolated between the tolerances that bracket each, as for the
@@ -344,12 +409,29 @@ pub fn tolerance_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         t_end,
         spec.geometry_tolerance,
     )?);
-    let (verdict, reason) = judge(
-        &claims,
-        proportionality.as_ref(),
-        energy.as_ref(),
-        round_trip.as_ref(),
-    );
+    let judged: Vec<JudgedClaim> = [
+        Some(judge_exponent(&claims, proportionality.as_ref())),
+        error_factor(&claims, &points),
+        cost_growth(&claims, &points),
+        bookkeeping(&points),
+        energy.as_ref().map(|e| judge_energy(&claims, e)),
+        round_trip.as_ref().map(|r| judge_round_trip(&claims, r)),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    let verdict = if judged.iter().any(|j| j.verdict == Verdict::Fail) {
+        Verdict::Fail
+    } else if judged.iter().any(|j| j.verdict == Verdict::Inconclusive) {
+        Verdict::Inconclusive
+    } else {
+        Verdict::Pass
+    };
+    let reason = judged
+        .iter()
+        .map(|j| j.reason.as_str())
+        .collect::<Vec<_>>()
+        .join("; ");
     Ok(ToleranceLadderRecord {
         integrator: integrator.name(),
         scene: scene.meta().id,
@@ -359,6 +441,7 @@ pub fn tolerance_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         proportionality,
         energy,
         round_trip,
+        judged,
         verdict,
         reason,
     })
@@ -370,7 +453,7 @@ fn round_off_bound<S: Scene<D>, const D: usize>(scene: &S, steps: u64) -> f64 {
     8.0 * f64::EPSILON * steps as f64 * scene.scale()
 }
 
-fn point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
+pub(crate) fn point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     integrator: &I,
     scene: &S,
     t_end: f64,
@@ -404,6 +487,7 @@ fn point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         error,
         round_off: round_off_bound(scene, run.accepted),
         fitted: false,
+        reported_evaluations: run.reported_evaluations,
     })
 }
 
@@ -617,27 +701,147 @@ fn pre_asymptotic_method(claims: &AdaptiveClaims, f: &Proportionality) -> Option
     })
 }
 
-fn judge(
-    claims: &AdaptiveClaims,
-    fit: Option<&Proportionality>,
-    energy: Option<&EnergyGrowth>,
-    trip: Option<&RoundTrip>,
-) -> (Verdict, String) {
-    let mut reasons = Vec::new();
-    let mut verdict = Verdict::Pass;
-    match fit {
-        Some(f) if f.theory.is_none() => reasons.push(format!(
-            "error ~ TOL^{:.3} [{:.3}, {:.3}], measured only: the estimate's power of h \
-             changes along the ladder, so no single exponent is predicted",
-            f.exponent, f.ci95[0], f.ci95[1]
-        )),
-        Some(f) if f.agrees() => reasons.push(format!(
-            "error ~ TOL^{:.3} [{:.3}, {:.3}] contains the predicted {:.3}",
-            f.exponent,
-            f.ci95[0],
-            f.ci95[1],
-            f.theory.unwrap_or(f64::NAN)
-        )),
+/// The accepted steps against the tolerance, `N ~ TOL^s`, judged against
+/// the controller's `s = -1/m` (steps settle at `h ~ TOL^(1/m)`, see the
+/// module documentation): `None` where no exponent is claimed or fewer than
+/// three tolerances reached `t_end`. An estimate that shrinks like a lower
+/// power `m' < m` of `h` makes the steps grow like `TOL^(-1/m')`; the
+/// nearest such law is `m' = m - 1`, so the cost fails when its whole
+/// interval lies below the halfway point between `-1/m` and `-1/(m - 1)`:
+/// it grows faster than the claimed controller can, and as fast as one
+/// with a worse estimate. (Growing slower is cheaper, and refutes nothing.)
+fn cost_growth(claims: &AdaptiveClaims, points: &[TolerancePoint]) -> Option<JudgedClaim> {
+    claims.proportionality?;
+    let m = f64::from(claims.estimate_power.max(2));
+    let steps: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.end == RunEnd::Reached && p.accepted > 0)
+        .map(|p| (p.tolerance, p.accepted as f64))
+        .collect();
+    let fit = power_law(&steps)?;
+    let halfway = -0.5 * (1.0 / m + 1.0 / (m - 1.0));
+    let refuted = fit.ci95[1] < halfway;
+    let why = format!(
+        "accepted steps ~ TOL^{:.3} [{:.3}, {:.3}] over {} tolerances, against the controller's TOL^{:.3}{}",
+        fit.slope,
+        fit.ci95[0],
+        fit.ci95[1],
+        fit.points,
+        -1.0 / m,
+        if refuted {
+            format!(
+                ": the cost grows faster than an estimate of power {m} allows (the whole interval below {halfway:.3}, halfway to power {})",
+                m - 1.0
+            )
+        } else {
+            String::new()
+        }
+    );
+    Some(JudgedClaim {
+        claim: AdaptiveClaim::Cost,
+        verdict: Verdict::from_bool(!refuted),
+        reason: why,
+    })
+}
+
+/// Where the integrator reports what it spent: the report against the
+/// calls counted on its force callback. A count is exact, so any
+/// difference refutes the report.
+fn bookkeeping(points: &[TolerancePoint]) -> Option<JudgedClaim> {
+    let reported: Vec<_> = points
+        .iter()
+        .filter_map(|p| p.reported_evaluations.map(|r| (p, r)))
+        .collect();
+    if reported.is_empty() {
+        return None;
+    }
+    let (verdict, reason) = match reported.iter().find(|(p, r)| *r != p.evaluations) {
+        Some((p, r)) => (
+            Verdict::Fail,
+            format!(
+                "at TOL = {:.0e} it reports {r} force evaluations and made {}",
+                p.tolerance, p.evaluations
+            ),
+        ),
+        None => (
+            Verdict::Pass,
+            "its reported force evaluations equal the counted ones".to_string(),
+        ),
+    };
+    Some(JudgedClaim {
+        claim: AdaptiveClaim::Evaluations,
+        verdict,
+        reason,
+    })
+}
+
+/// The achieved error against the stated bound `error <= factor x TOL`, at
+/// every tolerance whose error the ladder resolves (the points the exponent
+/// is fitted on: the run reached `t_end`, the error is below the ceiling and
+/// at least `1 / ROUND_OFF_SHARE` times the round-off the run can have
+/// made). A bound is a bound: the worst ratio above it refutes the claim,
+/// and no point resolved leaves it undecided.
+fn error_factor(claims: &AdaptiveClaims, points: &[TolerancePoint]) -> Option<JudgedClaim> {
+    let factor = claims.error_factor?;
+    let resolved: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.fitted)
+        .filter_map(|p| Some((p.tolerance, p.error?)))
+        .collect();
+    let worst = resolved
+        .iter()
+        .copied()
+        .max_by(|a, b| (a.1 / a.0).total_cmp(&(b.1 / b.0)));
+    let (verdict, reason) = match worst {
+        None => (
+            Verdict::Inconclusive,
+            format!(
+                "error <= {factor} x TOL claimed, but no tolerance's error is resolved above round-off"
+            ),
+        ),
+        Some((tol, e)) => {
+            let ratio = e / tol;
+            let holds = ratio <= factor;
+            (
+                Verdict::from_bool(holds),
+                format!(
+                    "the error is at most {ratio:.3} x TOL over {} resolved tolerances (at TOL = {tol:.0e}: {e:.3e}), {} the claimed {factor}",
+                    resolved.len(),
+                    if holds { "within" } else { "above" }
+                ),
+            )
+        }
+    };
+    Some(JudgedClaim {
+        claim: AdaptiveClaim::ErrorFactor,
+        verdict,
+        reason,
+    })
+}
+
+/// The fitted exponent against the controller's theory; where it misses,
+/// undecided only when the method is shown to be above its order at the
+/// ladder's steps (see the module documentation).
+fn judge_exponent(claims: &AdaptiveClaims, fit: Option<&Proportionality>) -> JudgedClaim {
+    let (verdict, reason) = match fit {
+        Some(f) if f.theory.is_none() => (
+            Verdict::Pass,
+            format!(
+                "error ~ TOL^{:.3} [{:.3}, {:.3}], measured only: the estimate's power of h \
+                 changes along the ladder, so no single exponent is predicted",
+                f.exponent, f.ci95[0], f.ci95[1]
+            ),
+        ),
+        Some(f) if f.agrees() => (
+            Verdict::Pass,
+            format!(
+                "error ~ TOL^{:.3} [{:.3}, {:.3}] contains the predicted {:.3}",
+                f.exponent,
+                f.ci95[0],
+                f.ci95[1],
+                f.theory.unwrap_or(f64::NAN)
+            ),
+        ),
         Some(f) => {
             let missed = format!(
                 "error ~ TOL^{:.3} [{:.3}, {:.3}] excludes the predicted {:.3}",
@@ -647,44 +851,65 @@ fn judge(
                 f.theory.unwrap_or(f64::NAN)
             );
             match pre_asymptotic_method(claims, f) {
-                Some(why) => {
-                    verdict = Verdict::Inconclusive;
-                    reasons.push(format!("{missed}, but {why}"));
-                }
-                None => {
-                    verdict = Verdict::Fail;
-                    reasons.push(missed);
-                }
+                Some(why) => (Verdict::Inconclusive, format!("{missed}, but {why}")),
+                None => (Verdict::Fail, missed),
             }
         }
-        None => {
-            verdict = Verdict::Inconclusive;
-            reasons.push(format!(
-                "fewer than {MIN_FIT_POINTS} clean tolerances: no exponent fitted"
-            ));
-        }
+        None => (
+            Verdict::Inconclusive,
+            format!("fewer than {MIN_FIT_POINTS} clean tolerances: no exponent fitted"),
+        ),
+    };
+    JudgedClaim {
+        claim: AdaptiveClaim::Exponent,
+        verdict,
+        reason,
     }
+}
+
+/// The long run's energy: a drift refutes a symplecticity or symmetry
+/// claim; without one, nothing is claimed and the class is only shown.
+fn judge_energy(claims: &AdaptiveClaims, e: &EnergyGrowth) -> JudgedClaim {
+    let class = e.class.map_or("unclassified", |c| c.name());
     let conserves = claims.symplectic || claims.symmetric;
-    if let Some(e) = energy {
-        let class = e.class.map_or("unclassified", |c| c.name());
-        if conserves && e.class == Some(EnergyClass::Drifting) {
-            verdict = Verdict::Fail;
-            reasons.push(format!("energy {class}, against a conservation claim"));
-        } else {
-            reasons.push(format!("energy {class} (nothing claimed)"));
-        }
+    let (verdict, reason) = if conserves && e.class == Some(EnergyClass::Drifting) {
+        (
+            Verdict::Fail,
+            format!("energy {class}, against a conservation claim"),
+        )
+    } else {
+        (Verdict::Pass, format!("energy {class} (nothing claimed)"))
+    };
+    JudgedClaim {
+        claim: AdaptiveClaim::Energy,
+        verdict,
+        reason,
     }
-    if let Some(r) = trip {
-        if claims.symmetric && !r.returns {
-            verdict = Verdict::Fail;
-            reasons.push("the round trip misses the start, against a symmetry claim".into());
-        } else if r.returns {
-            reasons.push("the round trip returns to round-off".into());
-        } else {
-            reasons.push("the round trip misses the start (not symmetric, as claimed)".into());
-        }
+}
+
+/// The round trip: missing the start refutes a symmetry claim.
+fn judge_round_trip(claims: &AdaptiveClaims, r: &RoundTrip) -> JudgedClaim {
+    let (verdict, reason) = if claims.symmetric && !r.returns {
+        (
+            Verdict::Fail,
+            "the round trip misses the start, against a symmetry claim".to_string(),
+        )
+    } else if r.returns {
+        (
+            Verdict::Pass,
+            "the round trip returns to round-off".to_string(),
+        )
+    } else {
+        (
+            Verdict::Pass,
+            "the round trip misses the start (not symmetric, as claimed)".to_string(),
+        )
+    };
+    JudgedClaim {
+        claim: AdaptiveClaim::RoundTrip,
+        verdict,
+        reason,
     }
-    (verdict, reasons.join("; "))
 }
 
 #[cfg(test)]
@@ -868,5 +1093,87 @@ mod tests {
     fn the_exponent_follows_the_powers() {
         assert_eq!(proportionality_exponent(6, 5), 1.2);
         assert_eq!(proportionality_exponent(8, 8), 1.0);
+    }
+
+    /// A ladder whose error is `c TOL^k` at TOL = 1e-3 .. 1e-12, every
+    /// point resolved except the tightest, at round-off.
+    fn synthetic_points(c: f64, k: f64) -> Vec<TolerancePoint> {
+        (3..=12)
+            .map(|d| {
+                let tol = 10f64.powi(-d);
+                TolerancePoint {
+                    tolerance: tol,
+                    evaluations: 100,
+                    accepted: 10,
+                    rejected: 0,
+                    end: RunEnd::Reached,
+                    error: Some(c * tol.powf(k)),
+                    round_off: 1e-15,
+                    fitted: d < 12,
+                    reported_evaluations: None,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_error_factor_is_a_bound_on_every_resolved_tolerance() {
+        let claims = AdaptiveClaims::pair(5, 4);
+        // nothing stated, nothing judged
+        assert_eq!(error_factor(&claims, &synthetic_points(30.0, 1.0)), None);
+        // error = 30 TOL: within 50, not within 20 (the figures named)
+        let pass = error_factor(&claims.within(50.0), &synthetic_points(30.0, 1.0)).unwrap();
+        assert_eq!(pass.verdict, Verdict::Pass, "{}", pass.reason);
+        let fail = error_factor(&claims.within(20.0), &synthetic_points(30.0, 1.0)).unwrap();
+        assert_eq!(fail.verdict, Verdict::Fail, "{}", fail.reason);
+        assert!(
+            fail.reason.contains("30.000 x TOL") && fail.reason.contains("above the claimed 20"),
+            "{}",
+            fail.reason
+        );
+        // error ~ TOL^0.8: the ratio grows as the tolerance tightens, and the
+        // tightest resolved tolerance (1e-11) decides: 1e-11^-0.2 = 158.5
+        let slow = error_factor(&claims.within(100.0), &synthetic_points(1.0, 0.8)).unwrap();
+        assert_eq!(slow.verdict, Verdict::Fail, "{}", slow.reason);
+        assert!(slow.reason.contains("1e-11"), "{}", slow.reason);
+        // the unresolved point at round-off is not held against the claim
+        let mut floor = synthetic_points(1.0, 1.0);
+        floor.last_mut().unwrap().error = Some(1e-6);
+        let judged = error_factor(&claims.within(2.0), &floor).unwrap();
+        assert_eq!(judged.verdict, Verdict::Pass, "{}", judged.reason);
+        // nothing resolved: undecided
+        for p in floor.iter_mut() {
+            p.fitted = false;
+        }
+        let none = error_factor(&claims.within(2.0), &floor).unwrap();
+        assert_eq!(none.verdict, Verdict::Inconclusive, "{}", none.reason);
+    }
+
+    #[test]
+    fn each_claim_is_judged_on_its_own_and_the_record_combines_them() {
+        let record = tolerance_ladder(&DPRKN6_ADAPTIVE, &KeplerCircular, &spec()).unwrap();
+        // no energy run in this spec; the rest are all judged, in order
+        let order: Vec<AdaptiveClaim> = record.judged.iter().map(|j| j.claim).collect();
+        assert_eq!(
+            order,
+            [
+                AdaptiveClaim::Exponent,
+                AdaptiveClaim::Cost,
+                AdaptiveClaim::RoundTrip
+            ]
+        );
+        assert!(record.judged.iter().all(|j| j.verdict == Verdict::Pass));
+        assert_eq!(record.verdict, Verdict::Pass, "{}", record.reason);
+        // an error bound half the achieved worst ratio fails that claim alone
+        let worst = record
+            .points
+            .iter()
+            .filter(|p| p.fitted)
+            .map(|p| p.error.unwrap() / p.tolerance)
+            .fold(0.0, f64::max);
+        let tight = error_factor(&record.claims.within(0.5 * worst), &record.points).unwrap();
+        assert_eq!(tight.verdict, Verdict::Fail, "{}", tight.reason);
+        let loose = error_factor(&record.claims.within(2.0 * worst), &record.points).unwrap();
+        assert_eq!(loose.verdict, Verdict::Pass, "{}", loose.reason);
     }
 }
