@@ -2,6 +2,8 @@
 //! suite, which several of them judge, runs once (see [`common::suite`]).
 
 mod adaptive;
+mod audit;
+mod audit_fingerprint;
 mod bad_input;
 mod broken;
 mod catalogue;

@@ -1,0 +1,381 @@
+//! An audit of integrators published by other crates: each method's
+//! documented claims against stepladder's studies, run through the public
+//! black-box adapters on autonomous scenes q'' = a(q).
+//!
+//! Every method carries the verdicts expected of it, each with the reason
+//! that does not come from this harness: a coefficient check of the
+//! published tableau, a source line, or a standalone probe of the crate.
+//! [`disagreements`] lists every measured verdict that differs from its
+//! expectation; the tests require it empty.
+
+pub mod glue;
+pub mod methods;
+pub mod report;
+
+use stepladder::guard;
+use stepladder::measure::Verdict;
+use stepladder::measure::accuracy::order::{OrderSpec, global_order};
+use stepladder::measure::adaptive::{
+    AdaptiveClaims, AdaptiveIntegrator, ToleranceLadderSpec, tolerance_ladder,
+};
+use stepladder::measure::cost::evaluations::{counting_step, evaluations};
+use stepladder::measure::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::measure::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::measure::geometry::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::scene::{Harmonic, KeplerEccentric, Scene};
+use stepladder::scheme::Scheme;
+
+/// Where a method's claims were read, and what a claim is expected to do.
+#[derive(Clone, Copy, Debug)]
+pub struct Provenance {
+    /// The crate and version.
+    pub krate: &'static str,
+    /// The method's name in the crate.
+    pub method: &'static str,
+    /// Where the claims come from (documentation or source, file:line).
+    pub claims_from: &'static str,
+    /// The fewest force evaluations per step the method needs (with a
+    /// first-same-as-last force where it can have one), for comparison.
+    pub minimum_evaluations: u32,
+    /// Why the evaluations claim is what it is: documented, or the true count.
+    pub evaluations_claim: &'static str,
+    /// The reproduction: the audit test that runs this method alone.
+    pub test: &'static str,
+}
+
+/// The verdicts expected of a fixed-step method's five claims on one scene,
+/// in the order order, symplectic, reversible, energy, evaluations.
+pub type ClaimVerdicts = [Verdict; 5];
+
+/// The names of the five claims, in [`ClaimVerdicts`] order.
+pub const CLAIMS: [&str; 5] = ["order", "symplectic", "reversible", "energy", "evaluations"];
+
+/// The verdict expected of each claim of a fixed-step method on each scene,
+/// and why (independently of this harness).
+#[derive(Clone, Copy, Debug)]
+pub struct FixedExpectation {
+    /// On the harmonic oscillator.
+    pub harmonic: ClaimVerdicts,
+    /// On the eccentric Kepler orbit.
+    pub kepler: ClaimVerdicts,
+    /// The independent reason for the expectation.
+    pub why: &'static str,
+    /// One line of independent evidence per refuted claim.
+    pub evidence: &'static [&'static str],
+}
+
+/// What the studies measured of one fixed-step method on one scene.
+#[derive(Clone, Debug)]
+pub struct FixedRow {
+    pub scene: &'static str,
+    pub measured_order: Option<f64>,
+    pub ci95: Option<[f64; 2]>,
+    pub order: Verdict,
+    pub symplectic: Verdict,
+    pub symplectic_residual: f64,
+    pub reversible: Verdict,
+    pub return_ulps: Option<f64>,
+    pub energy: Verdict,
+    pub energy_growth: Option<f64>,
+    pub evaluations: Verdict,
+    pub per_step: f64,
+    pub reasons: Vec<String>,
+}
+
+/// A fixed-step method's audit: claims, expectation, rows per scene.
+#[derive(Clone, Debug)]
+pub struct FixedAudit {
+    pub provenance: Provenance,
+    pub claims: stepladder::scheme::SchemeMeta,
+    pub expected: FixedExpectation,
+    pub rows: Vec<FixedRow>,
+}
+
+fn study<T>(what: &str, r: Result<T, stepladder::error::Error>) -> T {
+    r.unwrap_or_else(|e| panic!("audit: the {what} study could not run: {e}"))
+}
+
+fn fixed_row<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> FixedRow {
+    let order = study("order", global_order(scheme, scene, &OrderSpec::default()));
+    let symplectic = study(
+        "symplectic",
+        symplecticity(scheme, scene, &SymplecticSpec::default()),
+    );
+    let reverse = study(
+        "reversibility",
+        reversibility(scheme, scene, &ReverseSpec::default()),
+    );
+    let energy = study(
+        "energy",
+        energy_drift(scheme, scene, &EnergySpec::default()),
+    );
+    let counted = evaluations(scheme, scene, counting_step(scene));
+    FixedRow {
+        scene: scene.meta().id,
+        measured_order: order.measured_order,
+        ci95: order.fit.as_ref().map(|f| f.ci95),
+        order: order.verdict,
+        symplectic: symplectic.verdict,
+        symplectic_residual: symplectic.symplectic_residual,
+        reversible: reverse.verdict,
+        return_ulps: reverse.return_ulps,
+        energy: energy.verdict,
+        energy_growth: energy.growth_exponent,
+        evaluations: counted.verdict,
+        per_step: counted.per_step,
+        reasons: [
+            guard::order_failure(&order),
+            guard::symplectic_failure(&symplectic),
+            guard::reverse_failure(&reverse),
+            guard::energy_failure(&energy),
+            guard::evaluation_failure(&counted),
+        ]
+        .into_iter()
+        .flatten()
+        .collect(),
+    }
+}
+
+/// Runs every study of a fixed-step method on the audit's scenes: the
+/// oscillator (linear) and the eccentric Kepler orbit (nonlinear, e = 0.6).
+pub fn audit_fixed<M: Scheme>(
+    provenance: Provenance,
+    scheme: &M,
+    expected: FixedExpectation,
+) -> FixedAudit {
+    FixedAudit {
+        provenance,
+        claims: *scheme.meta(),
+        expected,
+        rows: vec![
+            fixed_row(scheme, &Harmonic::default()),
+            fixed_row(scheme, &KeplerEccentric::default()),
+        ],
+    }
+}
+
+/// The verdict expected of an adaptive integrator's tolerance ladder.
+#[derive(Clone, Copy, Debug)]
+pub struct AdaptiveExpectation {
+    /// The tolerance ladder's verdict.
+    pub verdict: Verdict,
+    /// Whether the accepted steps grow like an `O(h)` estimate's, i.e.
+    /// faster than `TOL^(-1/2)` (see [`FIRST_ORDER_GROWTH`]).
+    pub first_order_estimate: bool,
+    pub why: &'static str,
+    pub evidence: &'static [&'static str],
+}
+
+/// The step-growth exponent above which an estimate is at best first order
+/// in `h`. A controller keeping an estimate `~ C h^m` at the tolerance takes
+/// steps `h ~ TOL^(1/m)`, so `N ~ TOL^(-1/m)`: `s = 1/5` for the 5(4) pairs'
+/// claimed estimates, `1/8` for DOP853's, `1` for an estimate `~ h`. The
+/// threshold 1/2 (`m = 2`) separates them with room on both sides; at the
+/// loosest tolerances (1e-3, 1e-4) the runs are far from round-off.
+pub const FIRST_ORDER_GROWTH: f64 = 0.5;
+
+/// What the tolerance ladder measured on one scene.
+#[derive(Clone, Debug)]
+pub struct AdaptiveRow {
+    pub scene: &'static str,
+    pub exponent: Option<f64>,
+    pub ci95: Option<[f64; 2]>,
+    pub theory: Option<f64>,
+    pub evaluations_per_accepted: Option<f64>,
+    /// `s` in accepted steps ~ `TOL^(-s)` between the two loosest
+    /// tolerances the runs reached.
+    pub step_exponent: Option<f64>,
+    /// The tighter of the two runs stopped at its step limit: the exponent
+    /// is a lower bound.
+    pub step_exponent_is_bound: bool,
+    pub unfinished: usize,
+    pub verdict: Verdict,
+    pub reason: String,
+}
+
+/// An adaptive integrator's audit.
+#[derive(Clone, Debug)]
+pub struct AdaptiveAudit {
+    pub provenance: Provenance,
+    pub claims: AdaptiveClaims,
+    pub expected: AdaptiveExpectation,
+    pub rows: Vec<AdaptiveRow>,
+}
+
+fn adaptive_row<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
+    integrator: &I,
+    scene: &S,
+) -> AdaptiveRow {
+    let r = study(
+        "tolerance ladder",
+        tolerance_ladder(integrator, scene, &ToleranceLadderSpec::default()),
+    );
+    let (evals, accepted) = r
+        .points
+        .iter()
+        .filter(|p| p.end == stepladder::measure::adaptive::RunEnd::Reached)
+        .fold((0u64, 0u64), |(e, a), p| {
+            (e + p.evaluations, a + p.accepted)
+        });
+    // the loosest run that reached t_end, and the next tighter one: if that
+    // one stopped at its step limit, the steps it had accepted are a lower
+    // bound on what the whole run needs, and the exponent a lower bound too
+    let loosest = r
+        .points
+        .iter()
+        .position(|p| p.end == stepladder::measure::adaptive::RunEnd::Reached && p.accepted > 0);
+    let (step_exponent, step_exponent_is_bound) = match loosest {
+        Some(i) if i + 1 < r.points.len() && r.points[i + 1].accepted > 0 => {
+            let (a, b) = (&r.points[i], &r.points[i + 1]);
+            let s = (b.accepted as f64 / a.accepted as f64).ln() / (a.tolerance / b.tolerance).ln();
+            let bound = b.end != stepladder::measure::adaptive::RunEnd::Reached;
+            // a bound is only evidence of growth, never of its absence
+            (Some(s), bound)
+        }
+        _ => (None, false),
+    };
+    AdaptiveRow {
+        scene: scene.meta().id,
+        step_exponent,
+        step_exponent_is_bound,
+        exponent: r.proportionality.as_ref().map(|p| p.exponent),
+        ci95: r.proportionality.as_ref().map(|p| p.ci95),
+        theory: r.proportionality.as_ref().and_then(|p| p.theory),
+        evaluations_per_accepted: (accepted > 0).then(|| evals as f64 / accepted as f64),
+        unfinished: r
+            .points
+            .iter()
+            .filter(|p| p.end != stepladder::measure::adaptive::RunEnd::Reached)
+            .count(),
+        verdict: r.verdict,
+        reason: r.reason,
+    }
+}
+
+/// Runs the tolerance ladder of an adaptive integrator on the audit's scenes.
+pub fn audit_adaptive<I: AdaptiveIntegrator>(
+    provenance: Provenance,
+    integrator: &I,
+    expected: AdaptiveExpectation,
+) -> AdaptiveAudit {
+    AdaptiveAudit {
+        provenance,
+        claims: integrator.claims(),
+        expected,
+        rows: vec![
+            adaptive_row(integrator, &Harmonic::default()),
+            adaptive_row(integrator, &KeplerEccentric::default()),
+        ],
+    }
+}
+
+/// One audited method, fixed-step or adaptive.
+#[derive(Clone, Debug)]
+pub enum Audit {
+    Fixed(FixedAudit),
+    Adaptive(AdaptiveAudit),
+}
+
+impl FixedRow {
+    /// The measured verdicts in [`ClaimVerdicts`] order.
+    pub fn verdicts(&self) -> ClaimVerdicts {
+        [
+            self.order,
+            self.symplectic,
+            self.reversible,
+            self.energy,
+            self.evaluations,
+        ]
+    }
+}
+
+impl FixedExpectation {
+    /// The expectation on the scene with id `scene`.
+    pub fn on(&self, scene: &str) -> ClaimVerdicts {
+        if scene == "harmonic" {
+            self.harmonic
+        } else {
+            self.kepler
+        }
+    }
+}
+
+impl Audit {
+    pub fn provenance(&self) -> &Provenance {
+        match self {
+            Audit::Fixed(a) => &a.provenance,
+            Audit::Adaptive(a) => &a.provenance,
+        }
+    }
+}
+
+/// Every measured verdict that differs from its expectation, one line each
+/// with the study's own reason.
+pub fn disagreements(audit: &Audit) -> Vec<String> {
+    let p = audit.provenance();
+    let mut out = Vec::new();
+    match audit {
+        Audit::Fixed(a) => {
+            for row in &a.rows {
+                let want = a.expected.on(row.scene);
+                for ((claim, got), want) in CLAIMS.iter().zip(row.verdicts()).zip(want) {
+                    if got != want {
+                        out.push(format!(
+                            "{} {} on {}: {claim} measured {}, expected {} ({}); studies: {}",
+                            p.krate,
+                            p.method,
+                            row.scene,
+                            got.name(),
+                            want.name(),
+                            a.expected.why,
+                            row.reasons.join(" | ")
+                        ));
+                    }
+                }
+            }
+        }
+        Audit::Adaptive(a) => {
+            for row in &a.rows {
+                let first_order = row.step_exponent.and_then(|s| {
+                    if s > FIRST_ORDER_GROWTH {
+                        Some(true)
+                    } else if row.step_exponent_is_bound {
+                        None // a lower bound below the threshold decides nothing
+                    } else {
+                        Some(false)
+                    }
+                });
+                if first_order != Some(a.expected.first_order_estimate) {
+                    out.push(format!(
+                        "{} {} on {}: accepted steps ~ TOL^-{} between the two loosest tolerances reached, expected {} {FIRST_ORDER_GROWTH} ({})",
+                        p.krate,
+                        p.method,
+                        row.scene,
+                        row.step_exponent.map_or("? (fewer than two runs reached t_end)".into(), |s| format!("{s:.3}")),
+                        if a.expected.first_order_estimate { "above" } else { "at most" },
+                        a.expected.why,
+                    ));
+                }
+                if row.verdict != a.expected.verdict {
+                    out.push(format!(
+                        "{} {} on {}: tolerance ladder measured {}, expected {} ({}); study: {}",
+                        p.krate,
+                        p.method,
+                        row.scene,
+                        row.verdict.name(),
+                        a.expected.verdict.name(),
+                        a.expected.why,
+                        row.reason
+                    ));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Panics with every disagreement of `audit`, if any.
+pub fn assert_as_expected(audit: &Audit) {
+    let d = disagreements(audit);
+    assert!(d.is_empty(), "{}", d.join("\n"));
+}
