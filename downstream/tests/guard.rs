@@ -20,7 +20,7 @@ use differential_equations::ode::OrdinaryNumericalMethod;
 use differential_equations::prelude::{HamiltonianSystem, ODE, Status};
 use ode_solvers::dop_shared::FloatNumber;
 use ode_solvers::{Dop853, Dopri5, OutputType, Rk4, System};
-use stepladder::measure::adaptive::{AdaptiveBlackBox, AdaptiveClaims, Advance, RunEnd};
+use stepladder::measure::adaptive::{AdaptiveBlackBox, AdaptiveClaims, Advance, AdvanceFn, RunEnd};
 use stepladder::nalgebra::{SVector, Vector1};
 use stepladder::scene::{
     FromPotential, Harmonic, KeplerCircular, KeplerEccentric, Potential, Scene, SceneMeta,
@@ -619,10 +619,8 @@ fn dopri5_adaptive(
         };
     };
     let y = solver.y_out().last().expect("the run's end");
-    (
-        q.copy_from_slice(&y.as_slice()[..2]),
-        v.copy_from_slice(&y.as_slice()[2..]),
-    );
+    q.copy_from_slice(&y.as_slice()[..2]);
+    v.copy_from_slice(&y.as_slice()[2..]);
     Advance {
         accepted: stats.accepted_steps as u64,
         rejected: stats.rejected_steps as u64,
@@ -632,9 +630,7 @@ fn dopri5_adaptive(
 }
 
 /// DOPRI5: order 5, its embedded solution order 4 (estimate ~ h^5).
-static DOPRI5_ADAPTIVE: AdaptiveBlackBox<
-    fn(&mut [f64], &mut [f64], f64, f64, f64, &Force<'_, f64>) -> Advance,
-> = AdaptiveBlackBox::new(
+static DOPRI5_ADAPTIVE: AdaptiveBlackBox<AdvanceFn> = AdaptiveBlackBox::new(
     "ode-solvers-dopri5-adaptive",
     AdaptiveClaims::pair(5, 4),
     dopri5_adaptive,

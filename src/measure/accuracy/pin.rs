@@ -236,16 +236,10 @@ impl Pin {
 
     /// Reads a pin from its text.
     pub fn parse(text: &str) -> Result<Self, String> {
-        let mut fields = std::collections::HashMap::new();
-        for line in text.lines().map(str::trim) {
-            if line.is_empty() || line.starts_with('#') {
-                continue;
-            }
-            let (key, value) = line
-                .split_once('=')
-                .ok_or_else(|| format!("not `key = value`: {line:?}"))?;
-            fields.insert(key.trim().to_string(), value.trim().to_string());
-        }
+        let fields: std::collections::HashMap<String, String> = pin_fields(text)?
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect();
         let get = |key: &str| {
             fields
                 .get(key)
@@ -306,6 +300,22 @@ impl Pin {
             tolerance: number("tolerance")?,
         })
     }
+}
+
+/// The `key = value` lines of a pin file, comments (`#`) and blank lines
+/// skipped; the fixed-step and the adaptive pins share the format.
+pub(crate) fn pin_fields(text: &str) -> Result<std::collections::HashMap<&str, &str>, String> {
+    let mut fields = std::collections::HashMap::new();
+    for line in text.lines().map(str::trim) {
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let (key, value) = line
+            .split_once('=')
+            .ok_or_else(|| format!("not `key = value`: {line:?}"))?;
+        fields.insert(key.trim(), value.trim());
+    }
+    Ok(fields)
 }
 
 fn reference_name(r: Reference) -> &'static str {

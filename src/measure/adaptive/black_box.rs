@@ -116,6 +116,11 @@ impl AdaptiveClaims {
     }
 }
 
+/// An advance function as a plain `fn`: the type of
+/// `AdaptiveBlackBox<AdvanceFn>` when the function is a named one (a
+/// `static` integrator, say).
+pub type AdvanceFn = fn(&mut [f64], &mut [f64], f64, f64, f64, &Force<'_, f64>) -> Advance;
+
 /// An adaptive integrator given as `advance(q, v, t0, t1, tol, force)`:
 /// it advances `q` and `v` in place from `t0` to `t1` at tolerance `tol`
 /// (relative and absolute alike, as the crate's own pairs take it) and

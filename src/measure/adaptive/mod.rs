@@ -17,7 +17,7 @@ pub mod integrator;
 pub mod pin;
 pub mod tolerance_ladder;
 
-pub use black_box::{AdaptiveBlackBox, Advance};
+pub use black_box::{AdaptiveBlackBox, Advance, AdvanceFn};
 pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
 pub use integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
 pub use pin::{AdaptivePin, AdaptivePinOutcome, check_adaptive_pin};

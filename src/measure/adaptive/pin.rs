@@ -28,6 +28,7 @@
 
 use super::integrator::{AdaptiveIntegrator, RunEnd};
 use super::tolerance_ladder::{ToleranceLadderRecord, point};
+use crate::measure::accuracy::pin::pin_fields;
 use crate::measure::wording::figure;
 use crate::scene::{Scaled, Scene};
 use crate::tolerance::TWIN_SCALE;
@@ -100,16 +101,7 @@ impl AdaptivePin {
 
     /// Reads a pin from its text.
     pub fn parse(text: &str) -> Result<Self, String> {
-        let mut fields = std::collections::HashMap::new();
-        for line in text.lines().map(str::trim) {
-            if line.is_empty() || line.starts_with('#') {
-                continue;
-            }
-            let (key, value) = line
-                .split_once('=')
-                .ok_or_else(|| format!("not `key = value`: {line:?}"))?;
-            fields.insert(key.trim(), value.trim());
-        }
+        let fields = pin_fields(text)?;
         let get = |key: &str| {
             fields
                 .get(key)
@@ -307,15 +299,10 @@ mod tests {
         };
         let record = tolerance_ladder(&DPRKN6_ADAPTIVE, &KeplerCircular, &spec).unwrap();
         let dir = scratch("roundtrip");
-        let written = check_adaptive_pin_with(
-            &DPRKN6_ADAPTIVE,
-            &KeplerCircular,
-            &record,
-            &dir,
-            false,
-            false,
-        )
-        .unwrap();
+        let check = |ci: bool| {
+            check_adaptive_pin_with(&DPRKN6_ADAPTIVE, &KeplerCircular, &record, &dir, false, ci)
+        };
+        let written = check(false).unwrap();
         let AdaptivePinOutcome::Written(pin) = written else {
             panic!("a missing pin is written: {written:?}")
         };
@@ -327,15 +314,7 @@ mod tests {
         assert!(pin.allowed < 1e-3 * pin.error, "{pin:?}");
         assert!(pin.allowed >= 4.0 * pin.round_off, "{pin:?}");
         // a rerun agrees
-        let again = check_adaptive_pin_with(
-            &DPRKN6_ADAPTIVE,
-            &KeplerCircular,
-            &record,
-            &dir,
-            false,
-            true,
-        )
-        .unwrap();
+        let again = check(true).unwrap();
         assert!(
             matches!(again, AdaptivePinOutcome::Agrees { .. }),
             "{again:?}"
@@ -344,27 +323,11 @@ mod tests {
         let mut moved = pin.clone();
         moved.error += 2.0 * pin.allowed;
         std::fs::write(&path, moved.to_text()).unwrap();
-        let err = check_adaptive_pin_with(
-            &DPRKN6_ADAPTIVE,
-            &KeplerCircular,
-            &record,
-            &dir,
-            false,
-            true,
-        )
-        .unwrap_err();
+        let err = check(true).unwrap_err();
         assert!(err.contains("moved by") && err.contains("allowed"), "{err}");
         // under CI a missing pin is a failure, not a write
         std::fs::remove_file(&path).unwrap();
-        let err = check_adaptive_pin_with(
-            &DPRKN6_ADAPTIVE,
-            &KeplerCircular,
-            &record,
-            &dir,
-            false,
-            true,
-        )
-        .unwrap_err();
+        let err = check(true).unwrap_err();
         assert!(err.contains("under CI"), "{err}");
         assert!(!path.exists());
         std::fs::remove_dir_all(&dir).unwrap();
