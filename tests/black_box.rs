@@ -288,6 +288,24 @@ fn an_implicit_black_box_is_charged_what_its_solves_report() {
             solve
         },
     );
+    // a stateful step that claims to be implicit but reports nothing: the
+    // count is shown, not judged, and no rung carries a tally
+    let silent = BlackBox::stateful(
+        implicit_claims("bb-midpoint-silent"),
+        || (),
+        |_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
+            tight_midpoint(&mut (), q, v, h, force);
+        },
+    );
+    let r = evaluations(&silent, &scene, 0.01);
+    assert_eq!(
+        (r.reported_per_step, r.verdict),
+        (None, Verdict::Inconclusive),
+        "{}",
+        r.reason
+    );
+    let order = global_order(&silent, &scene, &OrderSpec::default()).unwrap();
+    assert!(order.rungs.iter().all(|g| g.solve.is_none()));
     let r = evaluations(&extra, &scene, 0.01);
     let reported = r.reported_per_step.expect("reported");
     assert_eq!(r.per_step, reported + 1.0, "{}", r.reason);
