@@ -302,6 +302,22 @@ impl Pin {
     }
 }
 
+/// Why a missing pin fails under CI, where nothing is written.
+pub(crate) fn missing_under_ci(who: &str, path: &Path) -> String {
+    format!(
+        "{who}: no pin at {} under CI; run the tests locally and commit the pin it writes",
+        path.display()
+    )
+}
+
+/// Writes a pin file (and its folder), or says why it could not.
+pub(crate) fn write_pin(who: &str, path: &Path, text: &str) -> Result<(), String> {
+    path.parent()
+        .map_or(Ok(()), std::fs::create_dir_all)
+        .and_then(|()| std::fs::write(path, text))
+        .map_err(|e| format!("{who}: cannot write {}: {e}", path.display()))
+}
+
 /// The `key = value` lines of a pin file, comments (`#`) and blank lines
 /// skipped; the fixed-step and the adaptive pins share the format.
 pub(crate) fn pin_fields(text: &str) -> Result<std::collections::HashMap<&str, &str>, String> {
@@ -426,15 +442,10 @@ pub fn check_pin_with<M: Scheme, S: Scene<D>, const D: usize>(
             let pin = Pin::parse(&text).map_err(|e| format!("{who}: {}: {e}", path.display()))?;
             compare(scheme, scene, &record, pin, &who)
         }
-        _ if ci && !update => Err(format!(
-            "{who}: no pin at {} under CI; run the tests locally and commit the pin it writes",
-            path.display()
-        )),
+        _ if ci && !update => Err(missing_under_ci(&who, &path)),
         _ => {
             let pin = new_pin(scheme, scene, &record).map_err(|e| format!("{who}: {e}"))?;
-            std::fs::create_dir_all(dir)
-                .and_then(|()| std::fs::write(&path, pin.to_text()))
-                .map_err(|e| format!("{who}: cannot write {}: {e}", path.display()))?;
+            write_pin(&who, &path, &pin.to_text())?;
             Ok(PinOutcome::Written(pin))
         }
     }

@@ -28,7 +28,7 @@
 
 use super::integrator::{AdaptiveIntegrator, RunEnd};
 use super::tolerance_ladder::{ToleranceLadderRecord, point};
-use crate::measure::accuracy::pin::pin_fields;
+use crate::measure::accuracy::pin::{missing_under_ci, pin_fields, write_pin};
 use crate::measure::wording::figure;
 use crate::scene::{Scaled, Scene};
 use crate::tolerance::TWIN_SCALE;
@@ -209,15 +209,10 @@ pub fn check_adaptive_pin_with<I: AdaptiveIntegrator, S: Scene<D>, const D: usiz
                 ))
             }
         }
-        _ if ci && !update => Err(format!(
-            "{who}: no pin at {} under CI; run the tests locally and commit the pin it writes",
-            path.display()
-        )),
+        _ if ci && !update => Err(missing_under_ci(&who, &path)),
         _ => {
             let pin = new_pin(integrator, scene, record).map_err(|e| format!("{who}: {e}"))?;
-            std::fs::create_dir_all(dir)
-                .and_then(|()| std::fs::write(&path, pin.to_text()))
-                .map_err(|e| format!("{who}: cannot write {}: {e}", path.display()))?;
+            write_pin(&who, &path, &pin.to_text())?;
             Ok(AdaptivePinOutcome::Written(pin))
         }
     }
