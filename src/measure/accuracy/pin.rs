@@ -302,6 +302,14 @@ impl Pin {
     }
 }
 
+/// `x` as a pin file prints it (`decimals` after the point, in exponent
+/// form), so that a pin written and read back is equal.
+pub(crate) fn printed(x: f64, decimals: usize) -> f64 {
+    format!("{x:.decimals$e}")
+        .parse()
+        .expect("a formatted float parses")
+}
+
 /// Why a missing pin fails under CI, where nothing is written.
 pub(crate) fn missing_under_ci(who: &str, path: &Path) -> String {
     format!(
@@ -496,14 +504,10 @@ fn new_pin<M: Scheme, S: Scene<D>, const D: usize>(
         t_end: record.t_end,
         steps,
         error,
-        round_off: format!("{:.2e}", rung.round_off_bound.unwrap_or(0.0))
-            .parse()
-            .expect("a formatted float parses"),
+        round_off: printed(rung.round_off_bound.unwrap_or(0.0), 2),
         // two significant digits, rounded up: the printed value is at
         // least the derived one
-        tolerance: format!("{:.1e}", 1.05 * tolerance)
-            .parse()
-            .expect("a formatted float parses"),
+        tolerance: printed(1.05 * tolerance, 1),
     })
 }
 

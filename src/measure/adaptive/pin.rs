@@ -28,7 +28,7 @@
 
 use super::integrator::{AdaptiveIntegrator, RunEnd};
 use super::tolerance_ladder::{ToleranceLadderRecord, point};
-use crate::measure::accuracy::pin::{missing_under_ci, pin_fields, write_pin};
+use crate::measure::accuracy::pin::{missing_under_ci, pin_fields, printed, write_pin};
 use crate::measure::wording::figure;
 use crate::scene::{Scaled, Scene};
 use crate::tolerance::TWIN_SCALE;
@@ -263,14 +263,6 @@ fn new_pin<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         // the derived one
         allowed: printed(1.05 * allowed, 1),
     })
-}
-
-/// `x` as the file prints it (`decimals` after the point, in exponent
-/// form), so that a pin written and read back is equal.
-fn printed(x: f64, decimals: usize) -> f64 {
-    format!("{x:.decimals$e}")
-        .parse()
-        .expect("a formatted float parses")
 }
 
 #[cfg(test)]

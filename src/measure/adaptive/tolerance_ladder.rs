@@ -256,7 +256,8 @@ pub struct ToleranceLadderRecord {
     /// The round trip.
     pub round_trip: Option<RoundTrip>,
     /// Each claim against its measurement, in the order of
-    /// [`AdaptiveClaim::ALL`] (a claim with nothing to judge is absent).
+    /// [`AdaptiveClaim`]'s variants (a claim with nothing to judge is
+    /// absent).
     pub judged: Vec<JudgedClaim>,
     /// All claims together: a failure if any failed, else inconclusive if
     /// any was, else a pass.
@@ -284,16 +285,6 @@ pub enum AdaptiveClaim {
 }
 
 impl AdaptiveClaim {
-    /// Every claim, in the order the record lists them.
-    pub const ALL: [AdaptiveClaim; 6] = [
-        AdaptiveClaim::Exponent,
-        AdaptiveClaim::ErrorFactor,
-        AdaptiveClaim::Cost,
-        AdaptiveClaim::Evaluations,
-        AdaptiveClaim::Energy,
-        AdaptiveClaim::RoundTrip,
-    ];
-
     /// Its name in test names and messages.
     pub fn name(self) -> &'static str {
         match self {
