@@ -60,8 +60,8 @@ use crate::tolerance::{
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-use crate::measure::accuracy::order_verdict::judge;
 pub use crate::measure::accuracy::order_verdict::local_order_limit;
+use crate::measure::accuracy::order_verdict::{data, judge};
 pub use crate::measure::accuracy::rung::{DropReason, OrderReduction, Reference, Rung};
 pub use crate::measure::accuracy::window::{
     Analysis, RoundOffModel, RungData, WindowChoice, analyse, local_order, select_window,
@@ -897,18 +897,6 @@ fn judged(mut rungs: Vec<Rung>) -> Vec<Rung> {
         );
     }
     rungs
-}
-
-/// A ladder's data as the window selection reads it.
-fn data(rungs: &[Rung]) -> Vec<RungData> {
-    rungs
-        .iter()
-        .map(|r| RungData {
-            h: r.h,
-            error: r.error,
-            round_off: r.round_off_bound.unwrap_or(0.0),
-        })
-        .collect()
 }
 
 #[cfg(test)]

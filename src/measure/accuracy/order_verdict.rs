@@ -177,8 +177,8 @@ fn reduction_text(claim: f64, r: &OrderReduction) -> String {
     )
 }
 
-/// The ladder data the window was chosen from.
-fn data(rungs: &[Rung]) -> Vec<RungData> {
+/// The ladder data the window is chosen from.
+pub(crate) fn data(rungs: &[Rung]) -> Vec<RungData> {
     rungs
         .iter()
         .map(|r| RungData {
