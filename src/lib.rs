@@ -50,25 +50,18 @@
 //! ```
 #![warn(missing_docs)]
 
-#[cfg(feature = "cli")]
-pub mod cli;
 /// The nalgebra version stepladder is built on, for writing generic schemes
 /// and scenes against the same vector types.
 pub use nalgebra;
-pub mod corpus;
 pub mod error;
 pub mod guard;
 pub mod ladder;
 pub mod measure;
 pub mod parallel;
-#[cfg(feature = "report")]
-pub mod report;
 pub mod run;
 pub mod scene;
 pub mod scheme;
 pub mod state;
-#[cfg(feature = "report")]
-pub mod suite;
 pub mod tolerance;
 
 /// The README's examples, compiled and run as doctests.

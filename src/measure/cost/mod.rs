@@ -1,7 +1,5 @@
 //! Cost: time per step, and force evaluations against the error they buy.
 
 pub mod evaluations;
-#[cfg(feature = "peer")]
-pub mod peer;
 pub mod step_time;
 pub mod work_points;

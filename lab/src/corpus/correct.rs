@@ -1,0 +1,1271 @@
+//! Correct schemes outside the catalogue, each claim true: odd orders (two
+//! second-order Runge-Kutta methods, Kutta's third order, Ruth's symplectic
+//! third order), order five (Dormand-Prince), a Runge-Kutta-Nyström method,
+//! implicit Runge-Kutta methods that are symmetric but not symplectic (the
+//! trapezoidal rule, Lobatto IIIA) or both (Gauss), and two more compositions
+//! of velocity Verlet (Suzuki's fractal and Yoshida's recursive ones).
+//!
+//! Every family is one generic stepper over a coefficient table:
+//! [`ExplicitRk`] over a Butcher tableau, [`Nystrom`] over a
+//! Runge-Kutta-Nyström tableau, [`ImplicitRk`] over an implicit tableau, and
+//! the catalogue's [`SplittingTable`] for splittings and compositions. The
+//! tests check every tableau against its order conditions (Butcher trees,
+//! Nyström trees, and for splittings the Taylor series of a product of matrix
+//! exponentials) and every scheme's order on the harmonic oscillator.
+
+use nalgebra::SVector;
+use stepladder::scene::Scene;
+use stepladder::scheme::{
+    BlackBox, FOREST_RUTH, Flow, Force, MAX_ITERATIONS, OneStep, ROUND_OFF_UNITS, Scheme,
+    SchemeMeta, SplittingTable, Stateful, StepFailure, VELOCITY_VERLET, VerletComposition,
+};
+use stepladder::state::{Real, State};
+
+/// An explicit Runge-Kutta method given by its Butcher tableau `(A, b, c)`,
+/// applied to the first-order system `y = (q, v)`, `y' = f(y) = (v, a(q))`:
+/// stage `i` is `Y_i = y + h sum_j a_ij k_j` with `k_j = f(Y_j)`, and the step
+/// `y' = y + h sum_i b_i k_i`. `A` is strictly lower triangular (checked
+/// when the constant is built by [`ExplicitRk::new`]); the system is
+/// autonomous, so `c` only documents the tableau (`c_i = sum_j a_ij`) and is
+/// used by the tests of the order conditions.
+///
+/// One force evaluation per stage; a zero entry costs nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExplicitRk<const S: usize> {
+    /// The scheme's claims; `force_evaluations` is `S`, set by `new`.
+    pub meta: SchemeMeta,
+    /// The Runge-Kutta matrix, strictly lower triangular.
+    pub a: [[f64; S]; S],
+    /// The weights.
+    pub b: [f64; S],
+    /// The nodes.
+    pub c: [f64; S],
+}
+
+impl<const S: usize> ExplicitRk<S> {
+    /// The method with this tableau and these claims (`force_evaluations`
+    /// replaced by the number of stages). Fails to compile if `a` is not
+    /// strictly lower triangular.
+    pub const fn new(mut meta: SchemeMeta, a: [[f64; S]; S], b: [f64; S], c: [f64; S]) -> Self {
+        let mut i = 0;
+        while i < S {
+            let mut j = i;
+            while j < S {
+                assert!(
+                    a[i][j] == 0.0,
+                    "an explicit tableau is strictly lower triangular"
+                );
+                j += 1;
+            }
+            i += 1;
+        }
+        meta.force_evaluations = S as u32;
+        Self { meta, a, b, c }
+    }
+}
+
+impl<const S: usize> OneStep for ExplicitRk<S> {
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    #[inline(always)]
+    fn advance<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        scene: &P,
+        s: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        // the q-slopes are the stage velocities, the v-slopes accelerations
+        let mut kq = [SVector::<R, D>::zeros(); S];
+        let mut kv = [SVector::<R, D>::zeros(); S];
+        for i in 0..S {
+            let (mut q, mut v) = (s.q, s.v);
+            for j in 0..i {
+                if self.a[i][j] != 0.0 {
+                    let w = h * R::of(self.a[i][j]);
+                    q += kq[j] * w;
+                    v += kv[j] * w;
+                }
+            }
+            kq[i] = v;
+            kv[i] = scene.acceleration(&q);
+        }
+        let (mut dq, mut dv) = (SVector::<R, D>::zeros(), SVector::<R, D>::zeros());
+        for i in 0..S {
+            if self.b[i] != 0.0 {
+                dq += kq[i] * R::of(self.b[i]);
+                dv += kv[i] * R::of(self.b[i]);
+            }
+        }
+        s.q += dq * h;
+        s.v += dv * h;
+        Ok(())
+    }
+}
+
+/// Neither symplectic nor symmetric, explicit, and no hand-derived phase
+/// error: what every explicit Runge-Kutta method of this module claims
+/// besides its id, name, order and reference.
+const fn explicit(
+    id: &'static str,
+    name: &'static str,
+    order: u32,
+    reference: &'static str,
+) -> SchemeMeta {
+    SchemeMeta {
+        id,
+        name,
+        order,
+        symplectic: false,
+        symmetric: false,
+        force_evaluations: 0, // set from the tableau
+        implicit: false,
+        reference,
+        phase_error: None,
+    }
+}
+
+/// Heun's method, the explicit trapezoidal rule:
+/// `k1 = f(y)`, `k2 = f(y + h k1)`, `y' = y + h/2 (k1 + k2)`.
+///
+/// Second order (`sum b = 1`, `sum b c = 1/2`; `sum b c^2 = 1/2`, not 1/3),
+/// neither symplectic nor symmetric: on the oscillator each step multiplies
+/// the energy by `|1 + iz - z^2/2|^2 = 1 + z^4/4` (`z = h w0`).
+pub const HEUN: ExplicitRk<2> = ExplicitRk::new(
+    explicit(
+        "heun",
+        "Heun's method (explicit trapezoidal RK2)",
+        2,
+        "K. Heun, Z. Math. Phys. 45, 23 (1900); E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential Equations I (1993), II.1",
+    ),
+    [[0.0, 0.0], [1.0, 0.0]],
+    [0.5, 0.5],
+    [0.0, 1.0],
+);
+
+/// The explicit midpoint rule (Runge's RK2): `k1 = f(y)`,
+/// `k2 = f(y + h/2 k1)`, `y' = y + h k2`.
+///
+/// Second order (`sum b c = 1/2`; `sum b c^2 = 1/4`, not 1/3), neither
+/// symplectic nor symmetric. On a linear problem it is the same map as
+/// [`HEUN`] (both are `1 + z + z^2/2`); they differ on nonlinear scenes.
+pub const EXPLICIT_MIDPOINT: ExplicitRk<2> = ExplicitRk::new(
+    explicit(
+        "explicit-midpoint",
+        "explicit midpoint rule (RK2)",
+        2,
+        "C. Runge, Math. Ann. 46, 167 (1895); E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential Equations I (1993), II.1",
+    ),
+    [[0.0, 0.0], [0.5, 0.0]],
+    [0.0, 1.0],
+    [0.0, 0.5],
+);
+
+/// Kutta's third-order method: `c = (0, 1/2, 1)`, `a21 = 1/2`, `a31 = -1`,
+/// `a32 = 2`, `b = (1/6, 2/3, 1/6)` (Simpson's weights).
+///
+/// Third order (both order-3 trees: `sum b c^2 = 1/3`, `sum b a c = 1/6`),
+/// neither symplectic nor symmetric: on the oscillator each step multiplies
+/// the energy by `1 - z^4/12 + z^6/36`.
+pub const KUTTA3: ExplicitRk<3> = ExplicitRk::new(
+    explicit(
+        "kutta3",
+        "Kutta's third-order Runge-Kutta method",
+        3,
+        "W. Kutta, Z. Math. Phys. 46, 435 (1901); E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential Equations I (1993), II.1",
+    ),
+    [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [-1.0, 2.0, 0.0]],
+    [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
+    [0.0, 0.5, 1.0],
+);
+
+/// The fifth-order solution of Dormand and Prince's RK5(4)7M pair, at fixed
+/// step and without error control. The pair's seventh stage (first same as
+/// last) serves only the embedded fourth-order estimate, and its fifth-order
+/// weight is zero, so a fixed step needs the first six stages:
+/// six force evaluations.
+///
+/// Fifth order (all 17 Butcher trees up to order five hold exactly in
+/// rationals), neither symplectic nor symmetric.
+pub const DORMAND_PRINCE5: ExplicitRk<6> = ExplicitRk::new(
+    explicit(
+        "dormand-prince5",
+        "Dormand-Prince fifth order (fixed step, no error control)",
+        5,
+        "J. R. Dormand, P. J. Prince, J. Comput. Appl. Math. 6, 19 (1980); E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential Equations I (1993), II.5",
+    ),
+    [
+        [0.0; 6],
+        [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+        [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+        [
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+            0.0,
+            0.0,
+        ],
+        [
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+            0.0,
+        ],
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+    [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0],
+);
+
+/// An explicit Runge-Kutta-Nyström method for `q'' = a(q)`, given by nodes
+/// `c`, a strictly lower triangular matrix `a` (the `abar` of the literature)
+/// and weights `b_bar` (positions) and `b` (velocities):
+/// `k_i = a(q + c_i h v + h^2 sum_j a_ij k_j)`,
+/// `q' = q + h v + h^2 sum_i b_bar_i k_i`, `v' = v + h sum_i b_i k_i`.
+///
+/// One force evaluation per stage.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Nystrom<const S: usize> {
+    /// The scheme's claims.
+    pub meta: SchemeMeta,
+    /// The nodes.
+    pub c: [f64; S],
+    /// The stage matrix for positions, strictly lower triangular.
+    pub a: [[f64; S]; S],
+    /// The position weights.
+    pub b_bar: [f64; S],
+    /// The velocity weights.
+    pub b: [f64; S],
+}
+
+impl<const S: usize> OneStep for Nystrom<S> {
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    #[inline(always)]
+    fn advance<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        scene: &P,
+        s: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        let h2 = h * h;
+        let mut k = [SVector::<R, D>::zeros(); S];
+        for i in 0..S {
+            let mut q = s.q + s.v * (h * R::of(self.c[i]));
+            for (kj, &aij) in k[..i].iter().zip(&self.a[i]) {
+                if aij != 0.0 {
+                    q += kj * (h2 * R::of(aij));
+                }
+            }
+            k[i] = scene.acceleration(&q);
+        }
+        let (mut dq, mut dv) = (SVector::<R, D>::zeros(), SVector::<R, D>::zeros());
+        for ((ki, &bb), &b) in k.iter().zip(&self.b_bar).zip(&self.b) {
+            dq += ki * R::of(bb);
+            dv += ki * R::of(b);
+        }
+        s.q += s.v * h + dq * h2;
+        s.v += dv * h;
+        Ok(())
+    }
+}
+
+/// The classical fourth-order Runge-Kutta-Nyström method with three force
+/// evaluations: `c = (0, 1/2, 1)`, `a21 = 1/8`, `a31 = 0`, `a32 = 1/2`,
+/// `b_bar = (1/6, 1/3, 0)`, `b = (1/6, 2/3, 1/6)`:
+/// `k1 = a(q)`, `k2 = a(q + h/2 v + h^2/8 k1)`, `k3 = a(q + h v + h^2/2 k2)`,
+/// `q' = q + h v + h^2 (k1/6 + k2/3)`, `v' = v + h (k1 + 4 k2 + k3)/6`.
+///
+/// Fourth order: the Nyström trees give `sum b_bar = 1/2`, `sum b_bar c =
+/// 1/6`, `sum b_bar c^2 = 1/12`, `sum b_bar a 1 = 1/24` for the positions and
+/// `sum b c^k = 1/(k+1)` (k = 0..3), `sum b a 1 = 1/6`, `sum b c a 1 = 1/8`,
+/// `sum b a c = 1/24` for the velocities, all exact; `sum b c^4 = 5/24`, not
+/// 1/5, so not fifth. Neither symplectic nor symmetric: of the conditions
+/// for a symplectic Runge-Kutta-Nyström method, `b_bar_i = b_i (1 - c_i)`
+/// holds but `b_i (b_bar_j - a_ij) = b_j (b_bar_i - a_ji)` fails at
+/// `(i, j) = (1, 2)` (`1/18` against `1/36`).
+pub const RKN4: Nystrom<3> = Nystrom {
+    meta: SchemeMeta {
+        id: "rkn4",
+        name: "classical Runge-Kutta-Nystrom method (order 4, 3 stages)",
+        order: 4,
+        symplectic: false,
+        symmetric: false,
+        force_evaluations: 3,
+        implicit: false,
+        reference: "E. J. Nystrom, Acta Soc. Sci. Fenn. 50, No. 13 (1925); E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential Equations I (1993), II.14",
+        phase_error: None,
+    },
+    c: [0.0, 0.5, 1.0],
+    a: [[0.0, 0.0, 0.0], [1.0 / 8.0, 0.0, 0.0], [0.0, 0.5, 0.0]],
+    b_bar: [1.0 / 6.0, 1.0 / 3.0, 0.0],
+    b: [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
+};
+
+/// Ruth's third-order symplectic method (1983), the first symplectic
+/// integrator beyond second order: kick-drift three times,
+/// `K(7/24) D(2/3) K(3/4) D(-2/3) K(-1/24) D(1)`.
+///
+/// Symplectic (a sequence of exact flows), not symmetric (the sequence is not
+/// a palindrome, and its adjoint, the reversed sequence, is a different
+/// method), third order: the weights sum to one in drifts and in kicks, the
+/// second-order condition `sum_(kick i before drift j) c_i d_j = 1/2` holds,
+/// and so do the two third-order ones; the fourth-order terms do not vanish.
+/// Three force evaluations per step.
+pub const RUTH3: SplittingTable = SplittingTable::new(
+    SchemeMeta {
+        id: "ruth3",
+        name: "Ruth's third-order symplectic method",
+        order: 3,
+        symplectic: true,
+        symmetric: false,
+        force_evaluations: 0, // derived by `new`
+        implicit: false,
+        reference: "R. D. Ruth, IEEE Trans. Nucl. Sci. 30, 2669 (1983)",
+        phase_error: None,
+    },
+    Flow::Kick,
+    &RUTH3_DRIFTS,
+    &RUTH3_KICKS,
+);
+
+/// Ruth's drift weights `d = (2/3, -2/3, 1)`.
+pub const RUTH3_DRIFTS: [f64; 3] = [2.0 / 3.0, -2.0 / 3.0, 1.0];
+
+/// Ruth's kick weights `c = (7/24, 3/4, -1/24)`.
+pub const RUTH3_KICKS: [f64; 3] = [7.0 / 24.0, 3.0 / 4.0, -1.0 / 24.0];
+
+/// Suzuki's `p = 1/(4 - 4^(1/3))`, the nearest double (from 40 digits,
+/// `0.41449077179437573714...`).
+pub const SUZUKI_P: f64 = 0.4144907717943757;
+
+/// The five Verlet steps of Suzuki's fractal composition.
+const SUZUKI4_STAGES: VerletComposition<5, 6> =
+    VerletComposition::new([SUZUKI_P, SUZUKI_P, 1.0 - 4.0 * SUZUKI_P, SUZUKI_P, SUZUKI_P]);
+
+/// Suzuki's fractal fourth-order composition: velocity Verlet with the steps
+/// `p h, p h, (1 - 4p) h, p h, p h`, `p = 1/(4 - 4^(1/3))`.
+///
+/// Fourth order: `sum w = 1`, and `sum w^3 = 4 p^3 + (1 - 4p)^3 = 0` exactly
+/// when `1 - 4p = -4^(1/3) p`, which defines `p`; the palindrome cancels the
+/// even orders. Symplectic and symmetric. Five force evaluations per step;
+/// the only backward step, `1 - 4p = -0.658`, is shorter than Forest-Ruth's
+/// `-1.70`, and so is the error constant.
+pub const SUZUKI4: SplittingTable = SUZUKI4_STAGES.table(SchemeMeta {
+    id: "suzuki4",
+    name: "Suzuki's fractal fourth-order composition (5 stages)",
+    order: 4,
+    symplectic: true,
+    symmetric: true,
+    force_evaluations: 0, // derived by `table`
+    implicit: false,
+    reference: "M. Suzuki, Phys. Lett. A 146, 319 (1990)",
+    phase_error: None,
+});
+
+/// `z1 = 1/(2 - 2^(1/5))`, the outer weight of the second triple jump, the
+/// nearest double (from 40 digits, `1.17467175808936338449...`).
+pub const YOSHIDA_Z1: f64 = 1.1746717580893633;
+
+/// `z0 = -2^(1/5)/(2 - 2^(1/5)) = 1 - 2 z1`, the nearest double (from 40
+/// digits, `-1.34934351617872676899...`).
+pub const YOSHIDA_Z0: f64 = -1.3493435161787268;
+
+/// The nine Verlet steps: Forest-Ruth's weights `x1 x0 x1` (from the
+/// catalogue's table) scaled by `z1`, `z0`, `z1` in turn.
+const YOSHIDA6_RECURSIVE_STAGES: VerletComposition<9, 10> = {
+    let (x1, x0) = (FOREST_RUTH.drift[0], FOREST_RUTH.drift[1]);
+    let (z1, z0) = (YOSHIDA_Z1, YOSHIDA_Z0);
+    VerletComposition::new([
+        z1 * x1,
+        z1 * x0,
+        z1 * x1,
+        z0 * x1,
+        z0 * x0,
+        z0 * x1,
+        z1 * x1,
+        z1 * x0,
+        z1 * x1,
+    ])
+};
+
+/// Yoshida's recursive sixth-order composition: the triple jump applied to
+/// the fourth-order Forest-Ruth method `S4`, `S6(h) = S4(z1 h) S4(z0 h)
+/// S4(z1 h)` with `z1 = 1/(2 - 2^(1/5))`, `z0 = 1 - 2 z1`: nine Verlet steps
+/// whose weights are the products `z_i x_j` of the two triple jumps.
+///
+/// Sixth order: `S4` is symmetric with the modified field `h X + h^5 X5 +
+/// ...`, and `2 z1 + z0 = 1`, `2 z1^5 + z0^5 = 0` cancel its `h^5` term; the
+/// palindrome cancels `h^6`. Symplectic and symmetric, nine force
+/// evaluations; the large weights (up to `2.3` in size) make its error
+/// constant large, which is why solution A of [`stepladder::scheme::YOSHIDA6`]
+/// with seven stages is preferred.
+pub const YOSHIDA6_RECURSIVE: SplittingTable = YOSHIDA6_RECURSIVE_STAGES.table(SchemeMeta {
+    id: "yoshida6-recursive",
+    name: "Yoshida's recursive sixth order (triple jump of Forest-Ruth, 9 stages)",
+    order: 6,
+    symplectic: true,
+    symmetric: true,
+    force_evaluations: 0, // derived by `table`
+    implicit: false,
+    reference: "H. Yoshida, Phys. Lett. A 150, 262 (1990), section 4 (the recursive triple jump); M. Suzuki, Phys. Lett. A 146, 319 (1990)",
+    phase_error: None,
+});
+
+/// An implicit Runge-Kutta method given by its tableau `(A, b, c)`, applied
+/// to `y = (q, v)`, `y' = (v, a(q))`: the stages solve
+/// `V_i = v + h sum_j a_ij k_j`, `Q_i = q + h sum_j a_ij V_j`, `k_i = a(Q_i)`,
+/// and the step is `v' = v + h sum_i b_i k_i`, `q' = q + h sum_i b_i V_i`.
+///
+/// The stage equations are solved by fixed-point iteration on the stage
+/// accelerations `k`, starting from the previous step's (zero before the
+/// first step: no force evaluation to start). Each iteration evaluates every
+/// stage (`S` force evaluations, which is what `meta.force_evaluations`
+/// counts) and contracts by about `h^2 L rho(A^2)` (`L` the Lipschitz
+/// constant of `a`). The iteration ends like the catalogue's implicit
+/// midpoint rule: once the stage positions move by less than
+/// [`ROUND_OFF_UNITS`] units of round-off and the moves stop shrinking. A
+/// solve that has not reached round-off after [`MAX_ITERATIONS`] iterations
+/// (a step too large for a contraction, there is no Newton fallback here) is
+/// a [`StepFailure::NotConverged`] and leaves the state unchanged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImplicitRk<const S: usize> {
+    /// The scheme's claims; `force_evaluations` is `S` (per iteration).
+    pub meta: SchemeMeta,
+    /// The Runge-Kutta matrix.
+    pub a: [[f64; S]; S],
+    /// The weights.
+    pub b: [f64; S],
+    /// The nodes (`c_i = sum_j a_ij`), for the tests of the order conditions.
+    pub c: [f64; S],
+}
+
+impl<const S: usize> ImplicitRk<S> {
+    /// The method with this tableau and these claims; `force_evaluations`
+    /// and `implicit` are set here (`S` evaluations per iteration).
+    pub const fn new(mut meta: SchemeMeta, a: [[f64; S]; S], b: [f64; S], c: [f64; S]) -> Self {
+        meta.force_evaluations = S as u32;
+        meta.implicit = true;
+        Self { meta, a, b, c }
+    }
+
+    /// The stage values `(Q_i, V_i)` given the stage accelerations `k`.
+    #[inline(always)]
+    fn stages<R: Real, const D: usize>(
+        &self,
+        q: &SVector<R, D>,
+        v: &SVector<R, D>,
+        k: &[SVector<R, D>; S],
+        h: R,
+    ) -> ([SVector<R, D>; S], [SVector<R, D>; S]) {
+        let mut vs = [*v; S];
+        let mut qs = [*q; S];
+        for (vi, row) in vs.iter_mut().zip(&self.a) {
+            for (kj, &aij) in k.iter().zip(row) {
+                if aij != 0.0 {
+                    *vi += kj * (h * R::of(aij));
+                }
+            }
+        }
+        for (qi, row) in qs.iter_mut().zip(&self.a) {
+            for (vj, &aij) in vs.iter().zip(row) {
+                if aij != 0.0 {
+                    *qi += vj * (h * R::of(aij));
+                }
+            }
+        }
+        (qs, vs)
+    }
+}
+
+/// What an implicit Runge-Kutta method carries between steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StageCarry<R: Real, const D: usize, const S: usize> {
+    /// The synchronised state.
+    pub state: State<D, R>,
+    /// The last step's stage accelerations, the next solve's starting guess.
+    pub k: [SVector<R, D>; S],
+    /// Iterations the last step took, converged or not (0 before the first).
+    pub last_iterations: u32,
+    /// Force evaluations spent by the solves since `start`, failed ones
+    /// included.
+    pub evaluations: u64,
+}
+
+impl<const S: usize> Scheme for ImplicitRk<S> {
+    type Carry<R: Real, const D: usize> = StageCarry<R, D, S>;
+
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    fn start<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        _: &P,
+        s: &State<D, R>,
+        _: R,
+    ) -> StageCarry<R, D, S> {
+        StageCarry {
+            state: *s,
+            k: [SVector::zeros(); S],
+            last_iterations: 0,
+            evaluations: 0,
+        }
+    }
+
+    fn step<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        scene: &P,
+        c: &mut StageCarry<R, D, S>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        let (q0, v0) = (c.state.q, c.state.v);
+        let units = R::of(ROUND_OFF_UNITS) * R::default_epsilon();
+        let mut k = c.k;
+        let (mut qs, _) = self.stages(&q0, &v0, &k, h);
+        let mut correction = R::zero();
+        let mut previous: Option<R> = None;
+        for iteration in 1..=MAX_ITERATIONS {
+            for i in 0..S {
+                k[i] = scene.acceleration(&qs[i]);
+            }
+            c.evaluations += S as u64;
+            let (next, vs) = self.stages(&q0, &v0, &k, h);
+            // how far the stage positions moved, against the rounding of
+            // the terms they are made of
+            correction = R::zero();
+            let mut size = R::zero();
+            for i in 0..S {
+                correction += (next[i] - qs[i]).norm_squared();
+                size += q0.norm_squared() + next[i].norm_squared();
+            }
+            qs = next;
+            // an overflowed or NaN iterate never converges (and an infinite
+            // correction would pass the test below against an infinite size)
+            if !(correction.is_finite() && size.is_finite()) {
+                return Err(fail(c, iteration, correction));
+            }
+            let settled = correction == R::zero() || previous.is_some_and(|p| correction >= p);
+            if correction <= units * units * size && (settled || iteration == MAX_ITERATIONS) {
+                c.last_iterations = iteration;
+                let (mut dq, mut dv) = (SVector::<R, D>::zeros(), SVector::<R, D>::zeros());
+                for i in 0..S {
+                    dq += vs[i] * (h * R::of(self.b[i]));
+                    dv += k[i] * (h * R::of(self.b[i]));
+                }
+                c.state = State::new(q0 + dq, v0 + dv);
+                c.k = k;
+                return Ok(());
+            }
+            previous = Some(correction);
+        }
+        Err(fail(c, MAX_ITERATIONS, correction))
+    }
+
+    fn state<R: Real, const D: usize>(&self, c: &StageCarry<R, D, S>, _: R) -> State<D, R> {
+        c.state
+    }
+
+    fn solver_evaluations<R: Real, const D: usize>(&self, c: &StageCarry<R, D, S>) -> Option<u64> {
+        Some(c.evaluations)
+    }
+}
+
+/// Records a failed solve (the state stays as it was) and describes it.
+fn fail<R: Real, const D: usize, const S: usize>(
+    c: &mut StageCarry<R, D, S>,
+    iterations: u32,
+    correction_squared: R,
+) -> StepFailure {
+    c.last_iterations = iterations;
+    StepFailure::NotConverged {
+        iterations,
+        residual: correction_squared.sqrt().to_subset().unwrap_or(f64::NAN),
+    }
+}
+
+/// The implicit trapezoidal rule, `y' = y + h/2 (f(y) + f(y'))`: the
+/// two-stage Lobatto IIIA method, `A = [[0, 0], [1/2, 1/2]]`, `b = (1/2,
+/// 1/2)`, `c = (0, 1)`. On `(q, v)`: `v' = v + h/2 (a(q) + a(q'))`,
+/// `q' = q + h/2 (v + v')`.
+///
+/// Second order, symmetric (the tableau is its own adjoint), implicit, and NOT
+/// symplectic: the condition `b_i a_ij + b_j a_ji = b_i b_j` fails at
+/// `i = j = 1` (`0` against `1/4`). It is conjugate to the implicit midpoint
+/// rule (trapezoid = half explicit Euler after half implicit Euler, midpoint
+/// the other way round), so its energy does not drift; on the linear
+/// oscillator it is the same map as the midpoint rule, `(1 + z/2)/(1 - z/2)`,
+/// and symplectic there: its non-symplecticity shows only on nonlinear
+/// scenes. Two force evaluations per iteration (the first stage, `a(q)`, is
+/// re-evaluated each iteration).
+pub const TRAPEZOIDAL: ImplicitRk<2> = ImplicitRk::new(
+    SchemeMeta {
+        id: "implicit-trapezoidal",
+        name: "implicit trapezoidal rule (Lobatto IIIA, 2 stages)",
+        order: 2,
+        symplectic: false,
+        symmetric: true,
+        force_evaluations: 0, // set by `new`
+        implicit: true,
+        reference: "E. Hairer, C. Lubich, G. Wanner, Geometric Numerical Integration (2006), II.1 and VI.4; E. Hairer, G. Wanner, Solving Ordinary Differential Equations II (1996), IV.5",
+        phase_error: None,
+    },
+    [[0.0, 0.0], [0.5, 0.5]],
+    [0.5, 0.5],
+    [0.0, 1.0],
+);
+
+/// `sqrt(3)/6`, the nearest double (from 40 digits,
+/// `0.28867513459481288225...`).
+pub const SQRT3_6: f64 = 0.28867513459481287;
+
+/// The two-stage Gauss-Legendre collocation method: `c = 1/2 -+ sqrt(3)/6`,
+/// `A = [[1/4, 1/4 - sqrt(3)/6], [1/4 + sqrt(3)/6, 1/4]]`, `b = (1/2, 1/2)`.
+///
+/// Order four (`2s`, the highest of any two-stage method), symplectic (`b_i
+/// a_ij + b_j a_ji = b_i b_j` for all `i, j`), symmetric, implicit. On the
+/// oscillator the map is the (2,2) Padé approximant of the rotation and
+/// conserves the energy exactly. Two force evaluations per iteration.
+pub const GAUSS4: ImplicitRk<2> = ImplicitRk::new(
+    SchemeMeta {
+        id: "gauss4",
+        name: "Gauss-Legendre collocation (2 stages, order 4)",
+        order: 4,
+        symplectic: true,
+        symmetric: true,
+        force_evaluations: 0, // set by `new`
+        implicit: true,
+        reference: "J. C. Butcher, Math. Comp. 18, 50 (1964); E. Hairer, C. Lubich, G. Wanner, Geometric Numerical Integration (2006), II.1 and VI.4",
+        phase_error: None,
+    },
+    [[0.25, 0.25 - SQRT3_6], [0.25 + SQRT3_6, 0.25]],
+    [0.5, 0.5],
+    [0.5 - SQRT3_6, 0.5 + SQRT3_6],
+);
+
+/// The three-stage Lobatto IIIA collocation method: `c = (0, 1/2, 1)`,
+/// `A = [[0, 0, 0], [5/24, 1/3, -1/24], [1/6, 2/3, 1/6]]`,
+/// `b = (1/6, 2/3, 1/6)`.
+///
+/// Order four (`2s - 2`), symmetric, implicit, and NOT symplectic: `2 b1 a11
+/// = 0` against `b1^2 = 1/36`. On the linear oscillator it is the same map as
+/// [`GAUSS4`] (both are the (2,2) Padé approximant) and so symplectic there;
+/// its non-symplecticity shows on nonlinear scenes. Three force evaluations
+/// per iteration.
+pub const LOBATTO_IIIA4: ImplicitRk<3> = ImplicitRk::new(
+    SchemeMeta {
+        id: "lobatto-iiia4",
+        name: "Lobatto IIIA collocation (3 stages, order 4)",
+        order: 4,
+        symplectic: false,
+        symmetric: true,
+        force_evaluations: 0, // set by `new`
+        implicit: true,
+        reference: "B. L. Ehle, Univ. Waterloo Research Report CSRR 2010 (1969); E. Hairer, G. Wanner, Solving Ordinary Differential Equations II (1996), IV.5; E. Hairer, C. Lubich, G. Wanner, Geometric Numerical Integration (2006), II.1",
+        phase_error: None,
+    },
+    [
+        [0.0, 0.0, 0.0],
+        [5.0 / 24.0, 1.0 / 3.0, -1.0 / 24.0],
+        [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
+    ],
+    [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
+    [0.0, 0.5, 1.0],
+);
+
+// ------------------------------------------------------ state kept between steps
+
+/// The step of [`FSAL_VERLET`]: velocity Verlet on slices, as a black box,
+/// keeping the force at the end of each step for the next one's first kick
+/// (first same as last). The kept force is only valid for the run it came
+/// from: each run must start from an empty one.
+fn fsal_verlet_step(last: &mut Vec<f64>, q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
+    if last.len() != q.len() {
+        last.resize(q.len(), 0.0);
+        force(q, last);
+    }
+    for i in 0..q.len() {
+        v[i] += 0.5 * h * last[i];
+        q[i] += h * v[i];
+    }
+    force(q, last);
+    for i in 0..q.len() {
+        v[i] += 0.5 * h * last[i];
+    }
+}
+
+/// The type of [`fsal_verlet_step`].
+type FsalStep = fn(&mut Vec<f64>, &mut [f64], &mut [f64], f64, &Force<'_, f64>);
+
+/// The stateful black box [`FSAL_VERLET`] is.
+type FsalVerlet = BlackBox<f64, Stateful<fn() -> Vec<f64>, FsalStep>>;
+
+/// Velocity Verlet as a stateful black box (see [`fsal_verlet_step`]): one
+/// force evaluation a step, every claim of the catalogue's velocity Verlet,
+/// and correct only because every run starts from a fresh, empty state.
+pub static FSAL_VERLET: FsalVerlet = BlackBox::stateful(
+    SchemeMeta {
+        id: "verlet-fsal-black-box",
+        name: "velocity Verlet keeping its last force, as a stateful black box",
+        phase_error: None,
+        ..VELOCITY_VERLET.meta
+    },
+    Vec::new,
+    fsal_verlet_step,
+);
+
+#[cfg(test)]
+pub(crate) mod tests {
+    //! Order conditions of every table and measured orders on the oscillator.
+    //! The helpers are shared with the tests of [`super::super::broken`].
+
+    use super::*;
+    use nalgebra::{Matrix2, SMatrix, Vector1};
+    use std::collections::BTreeSet;
+    use stepladder::run::integrate;
+    use stepladder::scene::{Anharmonic, Harmonic};
+
+    // ---------------------------------------------------------------- trees
+
+    /// A rooted tree as the sorted list of its subtrees.
+    #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+    pub(crate) struct Tree(Vec<Tree>);
+
+    impl Tree {
+        fn order(&self) -> usize {
+            1 + self.0.iter().map(Tree::order).sum::<usize>()
+        }
+
+        /// `gamma(t) = |t| prod gamma(children)`.
+        fn gamma(&self) -> f64 {
+            self.order() as f64 * self.0.iter().map(Tree::gamma).product::<f64>()
+        }
+
+        /// Every tree with one more node, in canonical form.
+        fn grown(&self) -> Vec<Tree> {
+            let mut out = Vec::new();
+            let mut with_leaf = self.0.clone();
+            with_leaf.push(Tree(Vec::new()));
+            with_leaf.sort();
+            out.push(Tree(with_leaf));
+            for (i, child) in self.0.iter().enumerate() {
+                for g in child.grown() {
+                    let mut children = self.0.clone();
+                    children[i] = g;
+                    children.sort();
+                    out.push(Tree(children));
+                }
+            }
+            out
+        }
+
+        /// The stage vector `g(t)_i = prod_children (A g(child))_i`.
+        fn stages<const S: usize>(&self, a: &[[f64; S]; S]) -> [f64; S] {
+            let mut g = [1.0; S];
+            for child in &self.0 {
+                let gc = child.stages(a);
+                for (i, gi) in g.iter_mut().enumerate() {
+                    *gi *= (0..S).map(|j| a[i][j] * gc[j]).sum::<f64>();
+                }
+            }
+            g
+        }
+
+        /// `Phi(t) - 1/gamma(t)`, the defect of the tree's order condition.
+        pub(crate) fn defect<const S: usize>(&self, a: &[[f64; S]; S], b: &[f64; S]) -> f64 {
+            let g = self.stages(a);
+            (0..S).map(|i| b[i] * g[i]).sum::<f64>() - 1.0 / self.gamma()
+        }
+
+        /// A readable name: `t` for a leaf, `[..]` for children.
+        pub(crate) fn name(&self) -> String {
+            if self.0.is_empty() {
+                "t".into()
+            } else {
+                let inner: Vec<String> = self.0.iter().map(Tree::name).collect();
+                format!("[{}]", inner.join(","))
+            }
+        }
+    }
+
+    /// All rooted trees with exactly `order` nodes.
+    pub(crate) fn trees(order: usize) -> Vec<Tree> {
+        let mut set = BTreeSet::from([Tree(Vec::new())]);
+        for _ in 1..order {
+            set = set.iter().flat_map(Tree::grown).collect();
+        }
+        set.into_iter().collect()
+    }
+
+    /// Every tree of order `p` by name, with the defect of its condition.
+    pub(crate) fn defects<const S: usize>(
+        a: &[[f64; S]; S],
+        b: &[f64; S],
+        p: usize,
+    ) -> Vec<(String, f64)> {
+        trees(p)
+            .iter()
+            .map(|t| (t.name(), t.defect(a, b)))
+            .collect()
+    }
+
+    /// The largest defect of the order conditions of order `p` exactly.
+    pub(crate) fn worst_defect<const S: usize>(a: &[[f64; S]; S], b: &[f64; S], p: usize) -> f64 {
+        defects(a, b, p)
+            .iter()
+            .map(|(_, d)| d.abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// Checks a tableau: `c = A 1`, every condition up to `order` to
+    /// round-off, and some condition of order `order + 1` clearly violated.
+    pub(crate) fn check_tableau<const S: usize>(
+        name: &str,
+        a: &[[f64; S]; S],
+        b: &[f64; S],
+        c: &[f64; S],
+        order: usize,
+    ) {
+        for i in 0..S {
+            let row: f64 = a[i].iter().sum();
+            assert!(
+                (row - c[i]).abs() < 1e-15,
+                "{name}: c_{i} = {} != {row}",
+                c[i]
+            );
+        }
+        for p in 1..=order {
+            for (tree, d) in defects(a, b, p) {
+                assert!(d.abs() < 4e-15, "{name}: condition of {tree} off by {d:e}");
+            }
+        }
+        let next = worst_defect(a, b, order + 1);
+        assert!(
+            next > 1e-4,
+            "{name}: order {} conditions hold too ({next:e})",
+            order + 1
+        );
+    }
+
+    #[test]
+    fn tree_counts_are_the_known_ones() {
+        let counts: Vec<usize> = (1..=6).map(|p| trees(p).len()).collect();
+        assert_eq!(counts, [1, 1, 2, 4, 9, 20]);
+        assert_eq!(trees(3).iter().map(Tree::gamma).sum::<f64>(), 3.0 + 6.0);
+    }
+
+    #[test]
+    fn runge_kutta_tableaux_satisfy_their_order_conditions() {
+        let t = &HEUN;
+        check_tableau("heun", &t.a, &t.b, &t.c, 2);
+        let t = &EXPLICIT_MIDPOINT;
+        check_tableau("explicit-midpoint", &t.a, &t.b, &t.c, 2);
+        let t = &KUTTA3;
+        check_tableau("kutta3", &t.a, &t.b, &t.c, 3);
+        let t = &DORMAND_PRINCE5;
+        check_tableau("dormand-prince5", &t.a, &t.b, &t.c, 5);
+        let t = &TRAPEZOIDAL;
+        check_tableau("trapezoidal", &t.a, &t.b, &t.c, 2);
+        let t = &GAUSS4;
+        check_tableau("gauss4", &t.a, &t.b, &t.c, 4);
+        let t = &LOBATTO_IIIA4;
+        check_tableau("lobatto-iiia4", &t.a, &t.b, &t.c, 4);
+        assert!((12.0 * SQRT3_6 * SQRT3_6 - 1.0).abs() < 3e-16);
+    }
+
+    /// `b_i a_ij + b_j a_ji - b_i b_j`, largest in size: zero for a
+    /// symplectic Runge-Kutta method.
+    fn symplecticity_defect<const S: usize>(a: &[[f64; S]; S], b: &[f64; S]) -> f64 {
+        let mut worst = 0.0_f64;
+        for i in 0..S {
+            for j in 0..S {
+                worst = worst.max((b[i] * a[i][j] + b[j] * a[j][i] - b[i] * b[j]).abs());
+            }
+        }
+        worst
+    }
+
+    /// `a_(s+1-i, s+1-j) + a_ij - b_j` and `b_(s+1-i) - b_i`, largest in
+    /// size: zero for a symmetric Runge-Kutta method.
+    fn symmetry_defect<const S: usize>(a: &[[f64; S]; S], b: &[f64; S]) -> f64 {
+        let mut worst = 0.0_f64;
+        for i in 0..S {
+            worst = worst.max((b[S - 1 - i] - b[i]).abs());
+            for j in 0..S {
+                worst = worst.max((a[S - 1 - i][S - 1 - j] + a[i][j] - b[j]).abs());
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn implicit_tableaux_are_as_geometric_as_they_claim() {
+        assert!(symplecticity_defect(&GAUSS4.a, &GAUSS4.b) < 1e-16);
+        assert!(symmetry_defect(&GAUSS4.a, &GAUSS4.b) < 1e-16);
+        assert_eq!(symplecticity_defect(&TRAPEZOIDAL.a, &TRAPEZOIDAL.b), 0.25);
+        assert_eq!(symmetry_defect(&TRAPEZOIDAL.a, &TRAPEZOIDAL.b), 0.0);
+        // at i = j = 1, 2 b1 a11 - b1^2 = -1/36, and at (1, 2) b2 a21 - b1 b2 = 1/36
+        let d = symplecticity_defect(&LOBATTO_IIIA4.a, &LOBATTO_IIIA4.b);
+        assert!((d - 1.0 / 36.0).abs() < 1e-16, "{d}");
+        assert!(symmetry_defect(&LOBATTO_IIIA4.a, &LOBATTO_IIIA4.b) < 1e-16);
+    }
+
+    /// Defects of the Runge-Kutta-Nyström order conditions up to order 4
+    /// (Hairer, Norsett, Wanner I, II.14), then `sum b c^4 - 1/5`.
+    fn nystrom_defects(t: &Nystrom<3>) -> Vec<f64> {
+        let (a, b, bb, c) = (&t.a, &t.b, &t.b_bar, &t.c);
+        let s = |f: &dyn Fn(usize) -> f64| (0..3).map(f).sum::<f64>();
+        let a1 = |i: usize| s(&|j| a[i][j]);
+        let ac = |i: usize| s(&|j| a[i][j] * c[j]);
+        let mut d: Vec<f64> = (0..3).map(|i| a1(i) - c[i] * c[i] / 2.0).collect();
+        d.push(s(&|i| bb[i]) - 1.0 / 2.0);
+        d.push(s(&|i| bb[i] * c[i]) - 1.0 / 6.0);
+        d.push(s(&|i| bb[i] * c[i] * c[i]) - 1.0 / 12.0);
+        d.push(s(&|i| bb[i] * a1(i)) - 1.0 / 24.0);
+        for k in 0..4 {
+            d.push(s(&|i| b[i] * c[i].powi(k)) - 1.0 / (k + 1) as f64);
+        }
+        d.push(s(&|i| b[i] * a1(i)) - 1.0 / 6.0);
+        d.push(s(&|i| b[i] * c[i] * a1(i)) - 1.0 / 8.0);
+        d.push(s(&|i| b[i] * ac(i)) - 1.0 / 24.0);
+        d.push(s(&|i| b[i] * c[i].powi(4)) - 1.0 / 5.0);
+        d
+    }
+
+    #[test]
+    fn nystrom_tableau_satisfies_its_order_conditions() {
+        let d = nystrom_defects(&RKN4);
+        let (last, up_to_four) = d.split_last().unwrap();
+        assert!(up_to_four.iter().all(|x| x.abs() < 3e-16), "{d:?}");
+        assert!((last - 1.0 / 120.0).abs() < 1e-16, "{last}");
+    }
+
+    // ------------------------------------------------------------ splittings
+
+    const N: usize = 5;
+    type Matrix = SMatrix<f64, N, N>;
+
+    /// A fixed pseudo-random matrix with entries in `[-1, 1]` (SplitMix64).
+    fn random_matrix(seed: u64) -> Matrix {
+        let mut state = seed;
+        Matrix::from_fn(|_, _| {
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^= z >> 31;
+            2.0 * (z >> 11) as f64 / (1u64 << 53) as f64 - 1.0
+        })
+    }
+
+    /// The drift generator `A` and kick generator `B` of the generic linear
+    /// problem `y' = (A + B) y`. By the Amitsur-Levitzki theorem `5 x 5`
+    /// matrices satisfy no polynomial identity below degree 10, so a
+    /// composition that agrees with `exp(h (A + B))` up to `h^p` at random
+    /// matrices satisfies every order condition up to `p`.
+    pub(crate) fn generators() -> (Matrix, Matrix) {
+        (random_matrix(0x5eed_0001), random_matrix(0x5eed_0002))
+    }
+
+    /// The Taylor coefficients in `h`, up to `h^degree`, of one step of the
+    /// table on `y' = (A + B) y`, minus those of `exp(h (A + B))`.
+    pub(crate) fn series_defects(table: &SplittingTable, degree: usize) -> Vec<Matrix> {
+        let (a, b) = generators();
+        let exp = |x: &Matrix, w: f64| -> Vec<Matrix> {
+            let mut terms = vec![Matrix::identity()];
+            for j in 1..=degree {
+                terms.push(terms[j - 1] * x * (w / j as f64));
+            }
+            terms
+        };
+        let times = |left: &[Matrix], right: &[Matrix]| -> Vec<Matrix> {
+            (0..=degree)
+                .map(|n| (0..=n).map(|i| left[i] * right[n - i]).sum())
+                .collect()
+        };
+        let mut product = exp(&Matrix::zeros(), 0.0);
+        for (flow, w) in table.sequence() {
+            let x = if flow == Flow::Drift { &a } else { &b };
+            product = times(&exp(x, w), &product);
+        }
+        let exact = exp(&(a + b), 1.0);
+        product.iter().zip(&exact).map(|(p, e)| p - e).collect()
+    }
+
+    /// The size of each Taylor coefficient of `exp(h (A + B))`, against
+    /// which the defects are judged.
+    pub(crate) fn exact_sizes(degree: usize) -> Vec<f64> {
+        let (a, b) = generators();
+        let mut term = Matrix::identity();
+        let mut sizes = vec![1.0];
+        for j in 1..=degree {
+            term = term * (a + b) / j as f64;
+            sizes.push(term.amax());
+        }
+        sizes
+    }
+
+    /// The relative defect of each Taylor coefficient, degrees `1..=degree`.
+    pub(crate) fn relative_defects(table: &SplittingTable, degree: usize) -> Vec<f64> {
+        let defects = series_defects(table, degree);
+        let sizes = exact_sizes(degree);
+        (1..=degree).map(|j| defects[j].amax() / sizes[j]).collect()
+    }
+
+    /// Sums of the drift and kick weights.
+    pub(crate) fn sums(table: &SplittingTable) -> (f64, f64) {
+        (table.drift.iter().sum(), table.kick.iter().sum())
+    }
+
+    fn check_splitting(table: &SplittingTable) {
+        let meta = &table.meta;
+        let order = meta.order as usize;
+        let (d, k) = sums(table);
+        assert!(
+            (d - 1.0).abs() < 1e-15 && (k - 1.0).abs() < 1e-15,
+            "{}: {d} {k}",
+            meta.id
+        );
+        let rel = relative_defects(table, order + 1);
+        for (j, r) in rel[..order].iter().enumerate() {
+            assert!(*r < 1e-13, "{}: degree {} off by {r:e}", meta.id, j + 1);
+        }
+        assert!(
+            rel[order] > 1e-3,
+            "{}: degree {} holds too",
+            meta.id,
+            order + 1
+        );
+        let sequence = table.sequence();
+        let palindrome = sequence
+            .iter()
+            .zip(sequence.iter().rev())
+            .all(|((f, a), (g, b))| f == g && a == b);
+        assert_eq!(palindrome, meta.symmetric, "{}", meta.id);
+    }
+
+    #[test]
+    fn splittings_satisfy_their_order_conditions() {
+        // the series code against the catalogue first
+        check_splitting(&stepladder::scheme::VELOCITY_VERLET);
+        check_splitting(&stepladder::scheme::FOREST_RUTH);
+        check_splitting(&RUTH3);
+        check_splitting(&SUZUKI4);
+        check_splitting(&YOSHIDA6_RECURSIVE);
+        assert_eq!(SUZUKI4.meta.force_evaluations, 5);
+        assert_eq!(YOSHIDA6_RECURSIVE.meta.force_evaluations, 9);
+        assert_eq!(RUTH3.meta.force_evaluations, 3);
+    }
+
+    #[test]
+    fn composition_weights_solve_their_defining_equations() {
+        let p = SUZUKI_P;
+        assert!((p * (4.0 - 4f64.cbrt()) - 1.0).abs() < 3e-16);
+        let w = SUZUKI4.drift;
+        let cubes: f64 = w.iter().map(|x| x.powi(3)).sum();
+        assert!(cubes.abs() < 1e-15, "{cubes:e}");
+        let (z1, z0) = (YOSHIDA_Z1, YOSHIDA_Z0);
+        assert!((2.0 * z1 + z0 - 1.0).abs() < 3e-16);
+        assert!((2.0 * z1.powi(5) + z0.powi(5)).abs() < 1e-14);
+        assert!((z1 * (2.0 - 2f64.powf(0.2)) - 1.0).abs() < 3e-16);
+        let w = YOSHIDA6_RECURSIVE.drift;
+        for odd in [3, 5] {
+            let s: f64 = w.iter().map(|x| x.powi(odd)).sum();
+            assert!(s.abs() < 1e-13, "sum w^{odd} = {s:e}");
+        }
+    }
+
+    // -------------------------------------------------- orders on the oscillator
+
+    /// Steps to `2 sqrt(2) T` at about `T / per_period`.
+    pub(crate) fn steps_for(per_period: f64) -> u64 {
+        (2.0 * std::f64::consts::SQRT_2 * per_period).round() as u64
+    }
+
+    /// The phase-space error of `steps` equal steps to `t = 2 sqrt(2) T` on
+    /// the default oscillator (`x = cos t`), or `None` if the run did not
+    /// complete.
+    pub(crate) fn oscillator_error<M: Scheme>(scheme: &M, steps: u64) -> Option<f64> {
+        let scene = Harmonic::default();
+        let t_end = scene.default_t_end();
+        let h = t_end / steps as f64;
+        let mut last = scene.initial();
+        let outcome = integrate(scheme, &scene, &scene.initial(), h, steps, |_, _, s| {
+            last = *s
+        });
+        let exact = State::new(Vector1::new(t_end.cos()), Vector1::new(-t_end.sin()));
+        outcome
+            .completed()
+            .then(|| scene.phase_distance(&last, &exact))
+    }
+
+    /// `(e(h), e(h/2), log2 of their ratio)` with `h = t_end / steps`.
+    pub(crate) fn oscillator_order<M: Scheme>(scheme: &M, steps: u64) -> (f64, f64, f64) {
+        let coarse = oscillator_error(scheme, steps).expect("coarse run completes");
+        let fine = oscillator_error(scheme, 2 * steps).expect("fine run completes");
+        (coarse, fine, (coarse / fine).log2())
+    }
+
+    fn check_order<M: Scheme>(scheme: &M, per_period: f64) {
+        let meta = scheme.meta();
+        let (coarse, fine, p) = oscillator_order(scheme, steps_for(per_period));
+        println!(
+            "{:<20} h = T/{per_period:<4} e(h) = {coarse:.3e}  e(h/2) = {fine:.3e}  order {p:.3}",
+            meta.id
+        );
+        assert!(
+            (p - meta.order as f64).abs() <= 0.15,
+            "{}: measured order {p:.3}, claimed {}",
+            meta.id,
+            meta.order
+        );
+    }
+
+    #[test]
+    fn every_correct_scheme_has_its_order_on_the_oscillator() {
+        check_order(&HEUN, 50.0);
+        check_order(&EXPLICIT_MIDPOINT, 50.0);
+        check_order(&KUTTA3, 50.0);
+        check_order(&RUTH3, 50.0);
+        check_order(&DORMAND_PRINCE5, 50.0);
+        check_order(&RKN4, 50.0);
+        check_order(&TRAPEZOIDAL, 50.0);
+        check_order(&GAUSS4, 50.0);
+        check_order(&LOBATTO_IIIA4, 50.0);
+        check_order(&SUZUKI4, 50.0);
+        check_order(&YOSHIDA6_RECURSIVE, 50.0);
+    }
+
+    // ------------------------------------------------------------- geometry
+
+    /// The Jacobian of the map `start`, one step of `h`, `state` at `s`, by
+    /// central differences.
+    pub(crate) fn step_jacobian<M: Scheme, P: Scene<1>>(
+        scheme: &M,
+        scene: &P,
+        s: &State<1>,
+        h: f64,
+    ) -> Matrix2<f64> {
+        let map = |q: f64, v: f64| {
+            let mut c = scheme.start(scene, &State::new(Vector1::new(q), Vector1::new(v)), h);
+            scheme.step(scene, &mut c, h).expect("step");
+            let out = scheme.state(&c, h);
+            (out.q[0], out.v[0])
+        };
+        let e = 1e-5;
+        let (q, v) = (s.q[0], s.v[0]);
+        let (qp, vp) = map(q + e, v);
+        let (qm, vm) = map(q - e, v);
+        let (qp2, vp2) = map(q, v + e);
+        let (qm2, vm2) = map(q, v - e);
+        Matrix2::new(
+            (qp - qm) / (2.0 * e),
+            (qp2 - qm2) / (2.0 * e),
+            (vp - vm) / (2.0 * e),
+            (vp2 - vm2) / (2.0 * e),
+        )
+    }
+
+    /// `det - 1` of the step's Jacobian at a point of the anharmonic orbit
+    /// (zero for a symplectic map in one dimension).
+    /// The step is run in dual numbers (the harness's tangent map), and
+    /// checked against central differences.
+    pub(crate) fn det_defect<M: Scheme>(scheme: &M, h: f64) -> f64 {
+        let scene = Anharmonic::default();
+        let s = State::new(Vector1::new(0.45), Vector1::new(0.2));
+        let differences = step_jacobian(scheme, &scene, &s, h).determinant();
+        let dual = stepladder::measure::geometry::tangent::step_jacobian(scheme, &scene, &s, h)
+            .expect("step")
+            .determinant();
+        assert!(
+            (dual - differences).abs() < 1e-8,
+            "{dual} against {differences}"
+        );
+        dual - 1.0
+    }
+
+    /// Phase-space distance after `n` steps of `h` then `n` of `-h`, each run
+    /// started afresh from the synchronised state, on the anharmonic well.
+    pub(crate) fn return_error<M: Scheme>(scheme: &M, h: f64, n: u64) -> f64 {
+        let scene = Anharmonic::default();
+        let start = scene.initial();
+        let mut there = start;
+        integrate(scheme, &scene, &start, h, n, |_, _, s| there = *s);
+        let mut back = there;
+        integrate(scheme, &scene, &there, -h, n, |_, _, s| back = *s);
+        scene.phase_distance(&back, &start)
+    }
+
+    fn check_geometry<M: Scheme>(scheme: &M) {
+        let meta = scheme.meta();
+        let det = det_defect(scheme, 0.3);
+        let back = return_error(scheme, 0.1, 50);
+        println!(
+            "{:<20} det - 1 = {det:+.2e}   return after 50 steps there and back = {back:.2e}",
+            meta.id
+        );
+        assert_eq!(
+            det.abs() < 1e-9,
+            meta.symplectic,
+            "{}: det - 1 = {det:e}",
+            meta.id
+        );
+        assert_eq!(back < 1e-13, meta.symmetric, "{}: return {back:e}", meta.id);
+    }
+
+    #[test]
+    fn every_correct_scheme_is_as_geometric_as_it_claims_on_a_nonlinear_scene() {
+        check_geometry(&HEUN);
+        check_geometry(&EXPLICIT_MIDPOINT);
+        check_geometry(&KUTTA3);
+        check_geometry(&RUTH3);
+        check_geometry(&DORMAND_PRINCE5);
+        check_geometry(&RKN4);
+        check_geometry(&TRAPEZOIDAL);
+        check_geometry(&GAUSS4);
+        check_geometry(&LOBATTO_IIIA4);
+        check_geometry(&SUZUKI4);
+        check_geometry(&YOSHIDA6_RECURSIVE);
+    }
+
+    #[test]
+    fn implicit_solves_converge_and_count_their_evaluations() {
+        let scene = Anharmonic::default();
+        let h = scene.period() / 50.0;
+        for (scheme, stages) in [(&TRAPEZOIDAL, 2u64), (&GAUSS4, 2)] {
+            let mut c = scheme.start(&scene, &scene.initial(), h);
+            for _ in 0..100 {
+                scheme.step(&scene, &mut c, h).unwrap();
+                assert!(
+                    (2..=12).contains(&c.last_iterations),
+                    "{}",
+                    c.last_iterations
+                );
+            }
+            assert_eq!(c.evaluations % stages, 0);
+            assert_eq!(scheme.solver_evaluations(&c), Some(c.evaluations));
+        }
+        // a step far too large for the contraction fails instead of lying
+        let stiff = Harmonic::new(100.0, 1.0, 0.0).unwrap();
+        let mut c = GAUSS4.start(&stiff, &stiff.initial(), 1.0);
+        let before = c.state;
+        assert!(matches!(
+            GAUSS4.step(&stiff, &mut c, 1.0),
+            Err(StepFailure::NotConverged { .. })
+        ));
+        assert_eq!(c.state, before);
+    }
+}

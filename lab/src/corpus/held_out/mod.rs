@@ -1,0 +1,1275 @@
+//! A held-out batch of the verdict corpus: integrators and scenes written
+//! apart from the harness and from the other batches ([`super::correct`],
+//! [`super::broken`]), each pair with the verdict theory says a correct
+//! harness must give.
+//!
+//! Scenes (all here, each checked by the scene check in the tests): a
+//! Lennard-Jones trimer vibrating about its equilateral minimum (`D = 6`),
+//! the three-dimensional Kepler problem on an inclined eccentric orbit with
+//! its exact solution from Kepler's equation (`D = 3`), the periodic Toda
+//! lattice of three particles (integrable, `D = 3`), the double well
+//! `V = (x^2 - 1)^2` on an orbit above the barrier with its exact solution
+//! `x = A cn(w t, m)` (`D = 1`), two coupled oscillators with incommensurate
+//! normal frequencies and their exact solution (`D = 2`), and a planar star
+//! with three planets in mass-weighted coordinates (`D = 8`).
+//!
+//! Schemes: Beeman's algorithm, the fourth-order Adams-Bashforth-Moulton
+//! predictor-corrector with a Runge-Kutta start-up, the three-stage Lobatto
+//! IIIA-IIIB partitioned pair, Butcher's sixth-order seven-stage
+//! Runge-Kutta method, Runge's third-order method, Kutta's 3/8 rule, the
+//! Dormand-Prince RKN6(4)6FD Runge-Kutta-Nyström method, the Candy-Rozmus
+//! (drift-first) fourth-order composition and Blanes and Moan's symplectic
+//! RKN method `SRKN_6^b`; and plausible bugs in them (a sign typo in Beeman,
+//! swapped corrector weights, a cold multistep start, a conjugate pair of
+//! weights swapped, a force lagging one drift behind, a flipped weight, the
+//! wrong tableau in half a partitioned pair, a stale closing force, swapped
+//! stage coefficients, velocities from a first-order difference).
+//!
+//! Notation: `z = h w` with `w` the scene's angular frequency `2 pi / T`;
+//! "relative" errors are phase-space distances divided by the scene's
+//! [`stepladder::scene::Scene::scale`].
+
+mod scenes;
+mod schemes;
+
+pub use scenes::*;
+pub use schemes::*;
+
+use crate::corpus::{Entry, Expect, Expected};
+
+// ======================================================================= entries
+
+/// Broken on the order claim only; the other claims not judged.
+const ORDER_FAILS: Expected = Expected::ANY.order(Expect::Fail);
+
+/// Broken on the order, symplecticity and symmetry claims; the energy not
+/// judged (the long run blows up or its solve fails).
+const STALE_FORCE: Expected = Expected::ANY
+    .order(Expect::Fail)
+    .symplectic(Expect::Fail)
+    .reversible(Expect::Fail);
+
+/// The held-out entries: 17 correct pairs and 20 broken ones (a data list,
+/// one entry per pair).
+pub fn entries() -> Vec<Entry> {
+    vec![
+        // ------------------------------------------------------------ correct
+        Entry::correct(
+            &BEEMAN,
+            LjTrimer,
+            "Beeman's positions are exactly the Störmer-Verlet recursion and its velocities a local formula of them: global order 2 (measured 2.00 on the trimer); it claims neither symplecticity nor symmetry, so nothing is promised of its energy or tangent map and every claim must pass.",
+        ),
+        Entry::correct(
+            &BEEMAN,
+            DoubleWell,
+            "Order 2 on any smooth scene (measured 2.00 against the cn solution); its one-step map is neither symplectic (det - 1 = -0.40 at h = 0.3) nor reversible, but it claims neither, so every claim must pass.",
+        ),
+        Entry::correct(
+            &ABM4,
+            Kepler3d,
+            "AB4 predictor, AM4 corrector (PECE) with an RK4 start-up of local order 5: global order 4 (4.03 on the oscillator, 4.7 pre-asymptotically on this orbit); a multistep method claiming nothing geometric, so even its energy wander over 10^4 periods (|dE| up to 0.5) must not fail it.",
+        ),
+        Entry::correct(
+            &ABM4,
+            CoupledOscillators,
+            "Order 4 on this linear scene (measured 4.1); PECE Adams methods are weakly unstable on the imaginary axis and its energy creeps up over the long run, but it claims neither symplecticity nor symmetry: every claim must pass.",
+        ),
+        Entry::correct(
+            &LOBATTO_IIIA_IIIB,
+            DoubleWell,
+            "The three-stage Lobatto IIIA-IIIB pair is order 4, symplectic (b_i av_ij + b_j aq_ji = b_i b_j exactly) and symmetric, its implicit stage solved to round-off (det - 1 = 4e-12, return 7e-15); the energy error stays bounded (7.7e-6 in the first and last thousand periods): every claim must pass.",
+        ),
+        Entry::correct(
+            &LOBATTO_IIIA_IIIB,
+            Toda3,
+            "Order 4 (measured 4.00), symplectic and symmetric; on the integrable Toda lattice its energy error stays bounded (6.6e-8 over 10^4 linearised periods): every claim must pass.",
+        ),
+        Entry::correct(
+            &BUTCHER6,
+            CoupledOscillators,
+            "Butcher's seven-stage method satisfies all 37 order conditions up to six exactly and fails at seven: order 6 (measured 6.00 on this linear scene); explicit, it claims neither symplecticity nor symmetry.",
+        ),
+        Entry::correct(
+            &BUTCHER6,
+            Planets4,
+            "Order 6 on a smooth, collision-free four-body orbit (measured 6.4 against a fine reference between T/25 and T/50); it claims nothing geometric, so every claim must pass.",
+        ),
+        Entry::correct(
+            &RUNGE3,
+            Kepler3d,
+            "Runge's four-stage method is exactly third order (sum b c a c = 1/6, not 1/8, blocks order four; measured 3.01 on the orbit); it claims nothing geometric.",
+        ),
+        Entry::correct(
+            &RUNGE3,
+            LjTrimer,
+            "Third order (measured 3.02 on the trimer vibration); explicit, claiming neither symplecticity nor symmetry: every claim must pass.",
+        ),
+        Entry::correct(
+            &CANDY_ROZMUS4,
+            Kepler3d,
+            "The drift-first triple jump of position Verlet is order 4 (its series matches exp(h(A+B)) to h^4), symplectic and symmetric; on the eccentric orbit its energy error stays bounded (5.3e-5 in the first and last thousand periods).",
+        ),
+        Entry::correct(
+            &CANDY_ROZMUS4,
+            Planets4,
+            "Order 4 (measured 3.96), symplectic, symmetric; the hierarchical system stays regular (neighbouring planets never closer than 1.0 over 10^4 inner periods) and the energy error bounded (1e-11).",
+        ),
+        Entry::correct(
+            &DPRKN6,
+            Kepler3d,
+            "Dormand-Prince RKN6(4)6FD, coefficients matching the published closed forms in sqrt(8581) to round-off: order 6 (6.00 on the oscillator, 6.8 pre-asymptotically on this orbit); it claims nothing geometric.",
+        ),
+        Entry::correct(
+            &DPRKN6,
+            Toda3,
+            "Order 6 (measured 6.06 against a fine reference); an explicit Nyström method claiming neither symplecticity nor symmetry: every claim must pass.",
+        ),
+        Entry::correct(
+            &SRKN6B,
+            LjTrimer,
+            "Blanes-Moan SRKN_6^b is a palindromic composition of exact flows of order 4 (series checked to h^4): symplectic and symmetric, with a bounded energy error (1e-10) on the regular small-amplitude vibration.",
+        ),
+        Entry::correct(
+            &SRKN6B,
+            DoubleWell,
+            "Order 4 (measured 4.09), symplectic and symmetric; on the 1-D orbit above the barrier its energy error stays bounded (4.2e-8 over 10^4 periods): every claim must pass.",
+        ),
+        Entry::correct(
+            &KUTTA38,
+            Toda3,
+            "Kutta's 3/8 rule satisfies all eight trees up to order four and fails at five: order 4 (measured 4.04 on the lattice); it claims nothing geometric.",
+        ),
+        // ------------------------------------------------------------- broken
+        Entry::broken(
+            &BEEMAN_SIGN_TYPO,
+            LjTrimer,
+            ORDER_FAILS,
+            "Typing +a(n-1) in Beeman's position update makes the h^2 coefficient 5/6: Störmer's recursion perturbed by -(h/3) da/dt plus an O(h) start error, ORDER 1 < 2, with a relative error of 1.1e-3 at T/1000 (measured order 0.99), far above 1e-7.",
+        ),
+        Entry::broken(
+            &BEEMAN_SIGN_TYPO,
+            Toda3,
+            ORDER_FAILS,
+            "The +a(n-1) typo makes Beeman first order (an -(h/3) da/dt force perturbation): relative error 2.3e-2 at T/1000, measured order 0.97, so the claim of order 2 must fail.",
+        ),
+        Entry::broken(
+            &BEEMAN_CLAIMS_SYMMETRIC,
+            DoubleWell,
+            Expected::PASS.reversible(Expect::Fail),
+            "Beeman's (q, v) map is not time-symmetric (50 steps of h = 0.1 there and back miss by 0.18 on a scale of 1.6), so the claim must fail; its positions are Störmer-Verlet's and its velocities a local formula of them, so the energy error stays a bounded oscillation (7.5e-3 in the first and last thousand periods) and order 2 and the energy pass, symplecticity not being claimed.",
+        ),
+        Entry::broken(
+            &ABM4_SWAPPED,
+            CoupledOscillators,
+            ORDER_FAILS,
+            "Corrector weights (19, 9, -5, 1)/24 still sum to one but have first moment 22/24, not 1/2: a local error (5/12) h^2 f', ORDER 1 < 4 (relative error 0.12 at T/1000, measured order 0.92).",
+        ),
+        Entry::broken(
+            &ABM4_SWAPPED,
+            Toda3,
+            ORDER_FAILS,
+            "The swapped corrector weights leave a consistent but first-order method: relative error 5.4e-2 at T/1000, measured order 0.95, against the claimed 4.",
+        ),
+        Entry::broken(
+            &ABM4_COLD_START,
+            Kepler3d,
+            ORDER_FAILS,
+            "Past slopes set to f(y0) are O(h) wrong and enter the first steps multiplied by h: O(h^2) start errors carried along the orbit, ORDER 2 < 4 (relative error 3.9e-3 at T/1000, measured order 2.00).",
+        ),
+        Entry::broken(
+            &ABM4_COLD_START,
+            Planets4,
+            ORDER_FAILS,
+            "The cold start caps the fourth-order Adams pair at ORDER 2: relative error 1.7e-4 at T/1000 against a fine reference, measured order 2.00.",
+        ),
+        Entry::broken(
+            &DPRKN6_SWAPPED,
+            Kepler3d,
+            ORDER_FAILS,
+            "Swapping the conjugate weights (84119543 +- 366727 sqrt(8581))/409622616 of b_bar keeps sum b_bar = 1/2 but makes sum b_bar c = 1/6 + 0.068: a local position error 0.068 h^3 a' v, ORDER 2 < 6 (relative error 6.1e-4 at T/1000, measured order 1.84).",
+        ),
+        Entry::broken(
+            &DPRKN6_SWAPPED,
+            LjTrimer,
+            ORDER_FAILS,
+            "The b_bar sign typo leaves ORDER 2: relative error 1.3e-6 at T/1000 (measured order 2.00), thirteen times the 1e-7 threshold and far above round-off.",
+        ),
+        Entry::broken(
+            &CANDY_ROZMUS4_LAGGED,
+            Toda3,
+            STALE_FORCE,
+            "Kicks with the force from before the preceding drift miss the impulse by 0.9746 h^2 a' v a step: ORDER 1 < 4 (relative error 6.7e-2 at T/1000, order 1.06), and no longer exact flows, so NOT symplectic and NOT symmetric (det = 1 + 0.975 z^2 on the oscillator); the long run blows up, so its energy verdict is left open.",
+        ),
+        Entry::broken(
+            &CANDY_ROZMUS4_LAGGED,
+            LjTrimer,
+            STALE_FORCE.energy(Expect::Fail),
+            "The lagged force makes the composition ORDER 1 (relative error 3.2e-3 at T/1000, order 1.07), neither symplectic nor symmetric; its determinant above one pumps energy in until the trimer dissociates within the long run (|dE| = 3.2 against a vibrational energy of 0.086), so the energy claim fails too.",
+        ),
+        Entry::broken(
+            &SRKN6B_SIGN_FLIPPED,
+            Kepler3d,
+            ORDER_FAILS
+                .energy(Expect::Pass)
+                .symplectic(Expect::Pass)
+                .reversible(Expect::Pass),
+            "Flipping b3 (with b4 recomputed from the sum) keeps consistency, the palindrome and exact flows, hence symplecticity, symmetry and a bounded energy, but breaks the third-order condition: ORDER 2 < 4, relative error 2.9e-4 at T/1000 (measured order 2.00); only the order must fail.",
+        ),
+        Entry::broken(
+            &SRKN6B_SIGN_FLIPPED,
+            Planets4,
+            ORDER_FAILS
+                .energy(Expect::Pass)
+                .symplectic(Expect::Pass)
+                .reversible(Expect::Pass),
+            "Still a symplectic, symmetric palindrome of exact flows (energy error bounded at 3e-10) but only ORDER 2 after the sign flip: relative error 3.0e-5 at T/1000, measured order 2.00, against the claimed 4.",
+        ),
+        Entry::broken(
+            &LOBATTO_IIIA_BOTH,
+            DoubleWell,
+            Expected::PASS.symplectic(Expect::Fail),
+            "Lobatto IIIA alone is order 4 and symmetric but not symplectic (2 b1 a11 = 0 against b1^2 = 1/36; det - 1 = 6.4e-4 at h = 0.3 on this nonlinear well): the symplectic claim must fail, while the order, reversibility and energy (a symmetric method on a reversible periodic orbit: bounded, 4.9e-6) pass.",
+        ),
+        Entry::broken(
+            &LOBATTO_IIIA_BOTH,
+            Toda3,
+            Expected::PASS.symplectic(Expect::Fail),
+            "IIIA for the velocities too: order 4 and symmetric, but its tangent map is not symplectic on the nonlinear lattice (|J^T W J - W| = 3e-4 at h = T/10); symmetric on a reversible integrable scene, so no energy drift (4.1e-8 over 10^4 periods): only symplecticity must fail.",
+        ),
+        Entry::broken(
+            &BUTCHER6_SWAPPED,
+            CoupledOscillators,
+            ORDER_FAILS,
+            "Swapping a42 and a43 keeps the row sums but breaks the tall third-order tree sum b a c by 3/32, which linear problems see: ORDER 2 < 6 (relative error 3.0e-4 at T/1000, measured order 2.00).",
+        ),
+        Entry::broken(
+            &BUTCHER6_SWAPPED,
+            Planets4,
+            ORDER_FAILS,
+            "The a42/a43 swap leaves ORDER 2 (the tall third-order tree off by 3/32): relative error 1.6e-4 at T/1000 against a fine reference, measured order 1.99, against the claimed 6.",
+        ),
+        Entry::broken(
+            &BUTCHER6_DIFFERENCED,
+            Kepler3d,
+            ORDER_FAILS,
+            "Positions from the sixth-order method but velocities reported as (q(n) - q(n-1))/h = v - h/2 a + O(h^2): ORDER 1 < 6 in phase space (relative error 7.8e-3 at T/1000, measured order 1.00).",
+        ),
+        Entry::broken(
+            &LOBATTO_STALE_CLOSING_FORCE,
+            Toda3,
+            STALE_FORCE,
+            "Closing the velocity with k1 in place of k3 makes the velocity weights (1/3, 2/3, 0): sum b c = 1/3, ORDER 1 < 4 (relative error 1.1e-2 at T/1000, measured order 1.01), and the step is neither symplectic nor symmetric (det = 1 + z^2/6 on the oscillator); the long run blows up until the solve fails, so the energy is left open.",
+        ),
+        Entry::broken(
+            &LOBATTO_STALE_CLOSING_FORCE,
+            DoubleWell,
+            STALE_FORCE,
+            "The start-of-step closing force leaves ORDER 1 (relative error 0.27 at T/1000, measured order 0.98) and destroys symplecticity (det - 1 = 0.12 at h = 0.3) and symmetry (return error 4.7 after 50 steps there and back); energy left open (the run blows up).",
+        ),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::SVector;
+    use nalgebra::{DMatrix, SMatrix, SymmetricEigen};
+    use std::f64::consts::TAU;
+    use stepladder::measure::Verdict;
+    use stepladder::measure::accuracy::scene_check::check_scene;
+    use stepladder::run::integrate;
+    use stepladder::scene::Harmonic;
+    use stepladder::scene::Scene;
+    use stepladder::scheme::Scheme;
+    use stepladder::state::State;
+
+    /// Numbers in scientific notation.
+    fn sci(v: &[f64]) -> String {
+        let items: Vec<String> = v.iter().map(|x| format!("{x:.1e}")).collect();
+        format!("[{}]", items.join(", "))
+    }
+
+    // ------------------------------------------------------------------ scenes
+
+    fn checked<S: Scene<D>, const D: usize>(scene: &S) {
+        let r = check_scene(scene);
+        println!(
+            "{:<28} force {:.1e} curl {:.1e} velocity {:?} acceleration {:?}",
+            r.scene,
+            r.force_residual,
+            r.curl_residual,
+            r.velocity_residual,
+            r.acceleration_residual
+        );
+        assert_eq!(r.verdict, Verdict::Pass, "{r:?}");
+    }
+
+    #[test]
+    fn every_scene_passes_the_scene_check() {
+        checked(&LjTrimer);
+        checked(&Kepler3d);
+        checked(&Toda3);
+        checked(&DoubleWell);
+        checked(&CoupledOscillators);
+        checked(&Planets4);
+    }
+
+    /// `-da/dq` by central differences.
+    fn hessian<S: Scene<D>, const D: usize>(scene: &S, q: &SVector<f64, D>) -> SMatrix<f64, D, D> {
+        let e = 1e-6;
+        SMatrix::from_fn(|i, j| {
+            let mut p = *q;
+            let mut m = *q;
+            p[j] += e;
+            m[j] -= e;
+            -(scene.acceleration(&p)[i] - scene.acceleration(&m)[i]) / (2.0 * e)
+        })
+    }
+
+    fn sorted_eigenvalues<const D: usize>(h: SMatrix<f64, D, D>) -> Vec<f64> {
+        let sym = (h + h.transpose()) * 0.5;
+        let dynamic = DMatrix::from_iterator(D, D, sym.iter().copied());
+        let mut ev: Vec<f64> = SymmetricEigen::new(dynamic)
+            .eigenvalues
+            .iter()
+            .copied()
+            .collect();
+        ev.sort_by(f64::total_cmp);
+        ev
+    }
+
+    #[test]
+    fn the_trimer_minimum_has_the_equilateral_normal_modes() {
+        let s = LjTrimer;
+        let q = SVector::<f64, 6>::from(LjTrimer::MINIMUM);
+        assert!(s.acceleration(&q).norm() < 1e-12);
+        assert!((s.potential(&q) + 3.0).abs() < 1e-14);
+        let ev = sorted_eigenvalues(hessian(&s, &q));
+        println!("trimer Hessian eigenvalues {ev:?}");
+        let expected = [0.0, 0.0, 0.0, 108.0, 108.0, 216.0];
+        for (e, x) in ev.iter().zip(expected) {
+            assert!((e - x).abs() < 1e-4, "{ev:?}");
+        }
+        assert!((s.period() - TAU / 108f64.sqrt()).abs() < 1e-15);
+        let s0 = s.initial();
+        let excitation = s.energy(&s0) + 3.0;
+        println!("trimer vibrational energy {excitation:.4}");
+        assert!(excitation > 0.02 && excitation < 0.2);
+        // centre of mass at the origin, at rest
+        for k in 0..2 {
+            assert!((s0.q[k] + s0.q[k + 2] + s0.q[k + 4]).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn the_toda_lattice_linearises_to_a_ring_of_springs() {
+        let ev = sorted_eigenvalues(hessian(&Toda3, &SVector::zeros()));
+        println!("Toda Hessian eigenvalues {ev:?}");
+        for (e, x) in ev.iter().zip([0.0, 3.0, 3.0]) {
+            assert!((e - x).abs() < 1e-6, "{ev:?}");
+        }
+        let s = Toda3.initial();
+        assert!(s.v.sum().abs() < 1e-15 && s.q.sum().abs() < 1e-15);
+        println!("Toda energy {:.4}", Toda3.energy(&s));
+    }
+
+    #[test]
+    fn exact_solutions_are_periodic_and_conserve_their_integrals() {
+        // Kepler: energy -1/2, |L| = sqrt(1 - e^2), L_z/|L| = cos i, period 2 pi
+        let k = Kepler3d;
+        for j in 0..40 {
+            let t = 0.37 * j as f64;
+            let s = k.exact(t).unwrap();
+            assert!((k.energy(&s) + 0.5).abs() < 1e-14, "{}", k.energy(&s));
+            let l = s.q.cross(&s.v);
+            assert!((l.norm() - 0.75f64.sqrt()).abs() < 1e-14);
+            assert!((l[2] / l.norm() - 0.6f64.cos()).abs() < 1e-14);
+            let later = k.exact(t + k.period()).unwrap();
+            assert!(k.phase_distance(&s, &later) < 1e-13);
+        }
+        // the double well: energy 25/9, x = -A at T/2, x = 0 at T/4
+        let w = DoubleWell;
+        let (a, t) = (DoubleWell::amplitude(), w.period());
+        println!("double well: A = {a}, T = {t}");
+        assert!((t - 3.496_847_455_899).abs() < 1e-11);
+        for j in 0..40 {
+            let s = w.exact(0.11 * j as f64).unwrap();
+            assert!((w.energy(&s) - 25.0 / 9.0).abs() < 1e-13);
+        }
+        assert!((w.exact(t / 2.0).unwrap().q[0] + a).abs() < 1e-13);
+        assert!(w.exact(t / 4.0).unwrap().q[0].abs() < 1e-13);
+        assert!(w.phase_distance(&w.exact(t).unwrap(), &w.initial()) < 1e-13);
+        // the coupled oscillators: energy
+        let c = CoupledOscillators;
+        let e0 = c.energy(&c.initial());
+        for j in 0..40 {
+            let s = c.exact(0.7 * j as f64).unwrap();
+            assert!((c.energy(&s) - e0).abs() < 1e-14);
+        }
+        assert!(c.phase_distance(&c.exact(0.0).unwrap(), &c.initial()) < 1e-15);
+    }
+
+    /// The largest phase-space distance to the exact solution over the
+    /// default run, or `None` if the run did not complete.
+    fn exact_error<M: Scheme, P: Scene<D>, const D: usize>(
+        scheme: &M,
+        scene: &P,
+        steps: u64,
+    ) -> Option<f64> {
+        let h = scene.default_t_end() / steps as f64;
+        let mut worst = 0.0f64;
+        let outcome = integrate(scheme, scene, &scene.initial(), h, steps, |_, t, s| {
+            worst = worst.max(scene.phase_distance(s, &scene.exact(t).expect("exact")));
+        });
+        outcome.completed().then_some(worst)
+    }
+
+    /// The state at the end of the default run.
+    fn final_state<M: Scheme, P: Scene<D>, const D: usize>(
+        scheme: &M,
+        scene: &P,
+        steps: u64,
+    ) -> Option<State<D>> {
+        let h = scene.default_t_end() / steps as f64;
+        let mut last = None;
+        let outcome = integrate(scheme, scene, &scene.initial(), h, steps, |_, _, s| {
+            last = Some(*s)
+        });
+        if outcome.completed() { last } else { None }
+    }
+
+    /// The error of a run of `steps` steps: against the exact solution over
+    /// the run where there is one, else at the end against Butcher's sixth
+    /// order at 40 000 steps.
+    fn error<M: Scheme, P: Scene<D>, const D: usize>(
+        scheme: &M,
+        scene: &P,
+        steps: u64,
+    ) -> Option<f64> {
+        if scene.exact(0.0).is_some() {
+            return exact_error(scheme, scene, steps);
+        }
+        let reference = final_state(&BUTCHER6, scene, 40_000).expect("reference");
+        final_state(scheme, scene, steps).map(|s| scene.phase_distance(&s, &reference))
+    }
+
+    #[test]
+    fn exact_solutions_agree_with_a_fine_integration() {
+        // Butcher's sixth order at T/4000 is exact to round-off
+        for (name, e) in [
+            ("kepler-3d", error(&BUTCHER6, &Kepler3d, 11_314)),
+            ("double-well", error(&BUTCHER6, &DoubleWell, 11_314)),
+            ("coupled", error(&BUTCHER6, &CoupledOscillators, 11_314)),
+        ] {
+            let e = e.unwrap();
+            println!("{name:<12} exact against Butcher 6 at T/4000: {e:.2e}");
+            assert!(e < 1e-11, "{name}: {e:e}");
+        }
+    }
+
+    // ------------------------------------------------------ Butcher trees
+
+    /// Every rooted tree up to `max` vertices: sizes and children (indices
+    /// of smaller trees, a non-decreasing multiset).
+    struct Trees {
+        size: Vec<usize>,
+        children: Vec<Vec<usize>>,
+    }
+
+    fn trees(max: usize) -> Trees {
+        fn pick(
+            t: &Trees,
+            below: usize,
+            from: usize,
+            left: usize,
+            current: &mut Vec<usize>,
+            out: &mut Vec<Vec<usize>>,
+        ) {
+            if left == 0 {
+                out.push(current.clone());
+                return;
+            }
+            for i in from..below {
+                if t.size[i] <= left {
+                    current.push(i);
+                    pick(t, below, i, left - t.size[i], current, out);
+                    current.pop();
+                }
+            }
+        }
+        let mut t = Trees {
+            size: vec![1],
+            children: vec![vec![]],
+        };
+        for n in 2..=max {
+            let below = t.size.len();
+            let mut out = Vec::new();
+            pick(&t, below, 0, n - 1, &mut Vec::new(), &mut out);
+            for ch in out {
+                t.size.push(n);
+                t.children.push(ch);
+            }
+        }
+        t
+    }
+
+    /// `(order, sum b Phi(t) - 1/gamma(t))` for every tree.
+    fn rk_defects<const S: usize>(m: &ButcherRk<S>, t: &Trees) -> Vec<(usize, f64)> {
+        let mut phi: Vec<[f64; S]> = Vec::new();
+        let mut gamma: Vec<f64> = Vec::new();
+        let mut out = Vec::new();
+        for n in 0..t.size.len() {
+            let mut p = [1.0; S];
+            let mut g = t.size[n] as f64;
+            for &ch in &t.children[n] {
+                for (i, pi) in p.iter_mut().enumerate() {
+                    *pi *= (0..i).map(|j| m.a[i][j] * phi[ch][j]).sum::<f64>();
+                }
+                g *= gamma[ch];
+            }
+            let weight: f64 = m.b.iter().zip(&p).map(|(b, x)| b * x).sum();
+            out.push((t.size[n], weight - 1.0 / g));
+            phi.push(p);
+            gamma.push(g);
+        }
+        out
+    }
+
+    /// The largest `p` such that every tree up to order `p` holds.
+    fn rk_order<const S: usize>(m: &ButcherRk<S>, t: &Trees) -> usize {
+        let d = rk_defects(m, t);
+        let max = *t.size.last().unwrap();
+        (1..=max)
+            .take_while(|&p| d.iter().filter(|x| x.0 == p).all(|x| x.1.abs() < 1e-14))
+            .last()
+            .unwrap_or(0)
+    }
+
+    #[test]
+    fn runge_kutta_tableaux_satisfy_exactly_their_order_conditions() {
+        let t = trees(7);
+        let counts: Vec<usize> = (1..=7)
+            .map(|n| t.size.iter().filter(|&&s| s == n).count())
+            .collect();
+        assert_eq!(counts, [1, 1, 2, 4, 9, 20, 48]);
+        for (m, claimed) in [(&RUNGE3, 3), (&KUTTA38, 4)] {
+            assert_eq!(rk_order(m, &t), claimed, "{}", m.meta.id);
+        }
+        assert_eq!(rk_order(&BUTCHER6, &t), 6);
+        assert_eq!(rk_order(&BUTCHER6_SWAPPED, &t), 2);
+        // the failing third-order tree is the tall one, off by 3/32
+        let d = rk_defects(&BUTCHER6_SWAPPED, &t);
+        let third: Vec<f64> = d.iter().filter(|x| x.0 == 3).map(|x| x.1).collect();
+        println!("butcher6-swapped third-order defects {third:?}");
+        assert!(third.iter().any(|x| (x - 3.0 / 32.0).abs() < 1e-15));
+        // nodes are the row sums
+        fn rows<const S: usize>(m: &ButcherRk<S>) -> f64 {
+            (0..S)
+                .map(|i| (m.a[i].iter().sum::<f64>() - m.c[i]).abs())
+                .fold(0.0, f64::max)
+        }
+        assert!(rows(&BUTCHER6) < 1e-15 && rows(&RUNGE3) < 1e-15 && rows(&KUTTA38) < 1e-15);
+        assert!(rows(&BUTCHER6_SWAPPED) < 1e-15);
+    }
+
+    // ---------------------------------------------------- Nyström tableaux
+
+    #[test]
+    fn the_nystrom_tableau_is_the_published_one_and_satisfies_its_conditions() {
+        let r = 8581f64.sqrt();
+        let closed = [
+            (DPRKN6.c[1], (209.0 - r) / 900.0),
+            (DPRKN6.c[2], (209.0 - r) / 450.0),
+            (DPRKN6.c[3], (209.0 + r) / 450.0),
+            (DPRKN6.a[1][0], (26131.0 - 209.0 * r) / 810_000.0),
+            (DPRKN6.a[2][0], (26131.0 - 209.0 * r) / 607_500.0),
+            (DPRKN6.a[2][1], (26131.0 - 209.0 * r) / 303_750.0),
+            (
+                DPRKN6.a[3][0],
+                (980_403_512_254.0 + 7_781_688_431.0 * r) / 11_694_469_921_875.0,
+            ),
+            (
+                DPRKN6.a[3][1],
+                -(1_262_884_486_208.0 + 15_385_481_287.0 * r) / 11_694_469_921_875.0,
+            ),
+            (
+                DPRKN6.a[3][2],
+                (7_166_233_891_441.0 + 78_694_563_299.0 * r) / 46_777_879_687_500.0,
+            ),
+            (
+                DPRKN6.a[4][0],
+                -9.0 * (329_260.0 + 3181.0 * r) / 27_040_000.0,
+            ),
+            (DPRKN6.a[4][1], 27.0 * (35129.0 + 3331.0 * r) / 13_520_000.0),
+            (
+                DPRKN6.a[4][2],
+                -27.0 * (554_358_343.0 + 31_040_327.0 * r) / 464_060_480_000.0,
+            ),
+            (
+                DPRKN6.a[4][3],
+                153.0 * (8_555_257.0 - 67973.0 * r) / 2_745_920_000.0,
+            ),
+            (DPRKN6.b_bar[0], 329.0 / 4212.0),
+            (
+                DPRKN6.b_bar[2],
+                (84_119_543.0 + 366_727.0 * r) / 409_622_616.0,
+            ),
+            (
+                DPRKN6.b_bar[3],
+                (84_119_543.0 - 366_727.0 * r) / 409_622_616.0,
+            ),
+            (DPRKN6.b_bar[4], 200.0 / 17901.0),
+            (DPRKN6.b[2], (389_225_579.0 + 96856.0 * r) / 1_024_056_540.0),
+            (DPRKN6.b[3], (389_225_579.0 - 96856.0 * r) / 1_024_056_540.0),
+            (DPRKN6.b[4], 2000.0 / 17901.0),
+        ];
+        for (k, (typed, formula)) in closed.iter().enumerate() {
+            assert!((typed - formula).abs() < 2e-15, "{k}: {typed} {formula}");
+        }
+        // row 6 is b_bar (first same as last), rows sum to c^2/2
+        assert_eq!(DPRKN6.a[5], DPRKN6.b_bar);
+        let quadrature = |t: &Rkn<6>| -> (Vec<f64>, Vec<f64>, f64) {
+            let b: Vec<f64> = (0..7)
+                .map(|k| {
+                    (0..6).map(|i| t.b[i] * t.c[i].powi(k)).sum::<f64>() - 1.0 / (k + 1) as f64
+                })
+                .collect();
+            let bb: Vec<f64> = (0..6)
+                .map(|k| {
+                    (0..6).map(|i| t.b_bar[i] * t.c[i].powi(k)).sum::<f64>()
+                        - 1.0 / ((k + 1) * (k + 2)) as f64
+                })
+                .collect();
+            let rows = (0..6)
+                .map(|i| (t.a[i].iter().sum::<f64>() - t.c[i] * t.c[i] / 2.0).abs())
+                .fold(0.0, f64::max);
+            (b, bb, rows)
+        };
+        let (b, bb, rows) = quadrature(&DPRKN6);
+        println!(
+            "dprkn6: b c^k defects {}\n        b_bar c^k defects {}, rows {rows:.1e}",
+            sci(&b),
+            sci(&bb)
+        );
+        assert!(b[..6].iter().all(|x| x.abs() < 1e-15) && b[6].abs() > 1e-4);
+        assert!(bb[..5].iter().all(|x| x.abs() < 1e-15) && bb[5].abs() > 1e-4);
+        assert!(rows < 1e-15);
+        let (_, bb, _) = quadrature(&DPRKN6_SWAPPED);
+        println!("dprkn6-conjugate-swap: b_bar c^k defects {}", sci(&bb));
+        assert!(bb[0].abs() < 1e-15 && (bb[1] - 0.0683).abs() < 1e-4);
+    }
+
+    #[test]
+    fn the_lobatto_pair_is_symplectic_and_symmetric_and_iiia_alone_is_not_symplectic() {
+        let symplectic = |m: &PartitionedRk<3>| {
+            let mut worst = 0.0f64;
+            for i in 0..3 {
+                for j in 0..3 {
+                    let d = m.b[i] * m.av[i][j] + m.b[j] * m.aq[j][i] - m.b[i] * m.b[j];
+                    worst = worst.max(d.abs());
+                }
+            }
+            worst
+        };
+        let symmetric = |a: &[[f64; 3]; 3], b: &[f64; 3]| {
+            let mut worst = 0.0f64;
+            for i in 0..3 {
+                for j in 0..3 {
+                    worst = worst.max((a[2 - i][2 - j] + a[i][j] - b[j]).abs());
+                }
+            }
+            worst
+        };
+        let pair = &LOBATTO_IIIA_IIIB;
+        assert!(symplectic(pair) < 1e-16);
+        assert!(symmetric(&pair.aq, &pair.b) < 3e-16 && symmetric(&pair.av, &pair.b) < 3e-16);
+        // IIIA for both: at i = j = 1, 2 b1 a11 - b1^2 = -1/36
+        assert!((symplectic(&LOBATTO_IIIA_BOTH) - 1.0 / 36.0).abs() < 1e-16);
+        for m in [pair, &LOBATTO_IIIA_BOTH] {
+            for (row, c) in m.aq.iter().zip(&m.c) {
+                assert!((row.iter().sum::<f64>() - c).abs() < 2e-16);
+            }
+        }
+    }
+
+    // ------------------------------------------------------------- splittings
+
+    /// A fixed pseudo-random matrix with entries in `[-1, 1]` (SplitMix64).
+    fn random_matrix<const N: usize>(seed: u64) -> SMatrix<f64, N, N> {
+        let mut state = seed;
+        SMatrix::from_fn(|_, _| {
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^= z >> 31;
+            2.0 * (z >> 11) as f64 / (1u64 << 53) as f64 - 1.0
+        })
+    }
+
+    /// Relative defects, degree by degree in `h` up to `degree`, of the
+    /// Taylor series of the splitting applied to `y' = (A + B) y` (drift
+    /// `A`, kick `B`) against `exp(h (A + B))`.
+    fn series_defects<const N: usize, const L: usize>(
+        sequence: &[(Sub, f64); L],
+        drift: &SMatrix<f64, N, N>,
+        kick: &SMatrix<f64, N, N>,
+        degree: usize,
+    ) -> Vec<f64> {
+        type Series<const N: usize> = Vec<SMatrix<f64, N, N>>;
+        let exp = |x: &SMatrix<f64, N, N>, w: f64| -> Series<N> {
+            let mut terms = vec![SMatrix::<f64, N, N>::identity()];
+            for j in 1..=degree {
+                terms.push(terms[j - 1] * x * (w / j as f64));
+            }
+            terms
+        };
+        let times = |l: &Series<N>, r: &Series<N>| -> Series<N> {
+            (0..=degree)
+                .map(|n| (0..=n).map(|i| l[i] * r[n - i]).sum())
+                .collect()
+        };
+        let mut product = exp(&SMatrix::zeros(), 0.0);
+        for &(sub, w) in sequence {
+            let x = if sub == Sub::Drift { drift } else { kick };
+            product = times(&exp(x, w), &product);
+        }
+        let exact = exp(&(drift + kick), 1.0);
+        (1..=degree)
+            .map(|j| (product[j] - exact[j]).amax() / exact[j].amax())
+            .collect()
+    }
+
+    #[test]
+    fn splittings_satisfy_their_order_conditions() {
+        let (a, b) = (
+            random_matrix::<5>(0x4e1d_0001),
+            random_matrix::<5>(0x4e1d_0002),
+        );
+        // the Nyström structure: drift q' = v, kick v' = K q
+        let k = random_matrix::<3>(0x4e1d_0003);
+        let rkn_drift = SMatrix::<f64, 6, 6>::from_fn(|i, j| f64::from(u8::from(j == i + 3)));
+        let rkn_kick =
+            SMatrix::<f64, 6, 6>::from_fn(|i, j| if i >= 3 && j < 3 { k[(i - 3, j)] } else { 0.0 });
+        for (id, seq) in [
+            ("candy-rozmus4", &CANDY_ROZMUS4.sequence[..]),
+            ("srkn6b", &SRKN6B.sequence[..]),
+        ] {
+            let general = match seq.len() {
+                7 => series_defects(&CANDY_ROZMUS_SEQUENCE, &a, &b, 5),
+                _ => series_defects(&SRKN6B.sequence, &a, &b, 5),
+            };
+            let nystrom = match seq.len() {
+                7 => series_defects(&CANDY_ROZMUS_SEQUENCE, &rkn_drift, &rkn_kick, 5),
+                _ => series_defects(&SRKN6B.sequence, &rkn_drift, &rkn_kick, 5),
+            };
+            println!(
+                "{id:<14} general {}\n{:<14} Nystrom {}",
+                sci(&general),
+                "",
+                sci(&nystrom)
+            );
+            assert!(general[..4].iter().all(|x| *x < 1e-13), "{id}");
+            assert!(general[4] > 1e-4, "{id}");
+            assert!(nystrom[..4].iter().all(|x| *x < 1e-13), "{id}");
+            // a palindrome
+            assert!(
+                seq.iter().zip(seq.iter().rev()).all(|(x, y)| x == y),
+                "{id}"
+            );
+        }
+        let flipped = series_defects(&SRKN6B_SIGN_FLIPPED.sequence, &a, &b, 4);
+        let flipped_rkn = series_defects(&SRKN6B_SIGN_FLIPPED.sequence, &rkn_drift, &rkn_kick, 4);
+        println!(
+            "srkn6b-b3-sign general {}\n               Nystrom {}",
+            sci(&flipped),
+            sci(&flipped_rkn)
+        );
+        assert!(flipped[..2].iter().all(|x| *x < 1e-14) && flipped[2] > 1e-3);
+        assert!(flipped_rkn[..2].iter().all(|x| *x < 1e-14) && flipped_rkn[2] > 1e-3);
+        let kicks: f64 = SRKN6B_SIGN_FLIPPED
+            .sequence
+            .iter()
+            .filter(|x| x.0 == Sub::Kick)
+            .map(|x| x.1)
+            .sum();
+        assert!((kicks - 1.0).abs() < 1e-15);
+        let b4 = |m: &Splitting<13>| m.sequence[6].1;
+        println!(
+            "srkn6b b4 = {}, with b3 flipped b4 = {}",
+            b4(&SRKN6B),
+            b4(&SRKN6B_SIGN_FLIPPED)
+        );
+        // Candy-Rozmus's triple jump
+        assert!((2.0 * TRIPLE_X1 + TRIPLE_X0 - 1.0).abs() < 1e-15);
+        assert!((2.0 * TRIPLE_X1.powi(3) + TRIPLE_X0.powi(3)).abs() < 1e-14);
+        assert_eq!(CANDY_ROZMUS4.meta.force_evaluations, 3);
+        assert_eq!(SRKN6B.meta.force_evaluations, 7);
+        // the lagged force's leading impulse error, sum of c_i d_i
+        let (mut d, mut sum) = (0.0, 0.0);
+        for &(sub, w) in &CANDY_ROZMUS_SEQUENCE {
+            match sub {
+                Sub::Drift => d = w,
+                Sub::Kick => sum += w * d,
+            }
+        }
+        println!("candy-rozmus sum c_i d_i = {sum}");
+        assert!((sum - 0.974_55).abs() < 1e-5);
+    }
+
+    // ---------------------------------------------------------------- orders
+
+    /// `log2 (e(n) / e(2n))` and the errors.
+    fn measured_order<M: Scheme, P: Scene<D>, const D: usize>(
+        scheme: &M,
+        scene: &P,
+        n: u64,
+    ) -> (f64, f64, f64) {
+        let coarse = error(scheme, scene, n).expect("coarse run");
+        let fine = error(scheme, scene, 2 * n).expect("fine run");
+        ((coarse / fine).log2(), coarse, fine)
+    }
+
+    /// Steps over the default run (`2 sqrt(2)` periods) at `T / per_period`.
+    fn steps(per_period: f64) -> u64 {
+        (2.0 * std::f64::consts::SQRT_2 * per_period).round() as u64
+    }
+
+    fn self_check<M: Scheme, P: Scene<D>, const D: usize>(scheme: &M, scene: &P, per_period: f64) {
+        let (p, coarse, fine) = measured_order(scheme, scene, steps(per_period));
+        let claimed = scheme.meta().order as f64;
+        println!(
+            "{:<24} {:<22} T/{per_period:<5} e = {coarse:.2e} -> {fine:.2e}  order {p:.2} (claims {claimed})",
+            scheme.meta().id,
+            scene.meta().id
+        );
+        // at least the claimed order; a little more before the asymptotic
+        // regime is reached
+        assert!(
+            p > claimed - 0.25 && p < claimed + 1.0,
+            "{}: {p}",
+            scheme.meta().id
+        );
+    }
+
+    #[test]
+    fn correct_schemes_have_their_order_on_the_oscillator_and_the_3d_orbit() {
+        let osc = Harmonic::default();
+        self_check(&BEEMAN, &osc, 100.0);
+        self_check(&BEEMAN, &Kepler3d, 400.0);
+        self_check(&ABM4, &osc, 100.0);
+        self_check(&ABM4, &Kepler3d, 400.0);
+        self_check(&LOBATTO_IIIA_IIIB, &osc, 50.0);
+        self_check(&LOBATTO_IIIA_IIIB, &Kepler3d, 200.0);
+        self_check(&LOBATTO_IIIA_IIIB, &DoubleWell, 100.0);
+        self_check(&BUTCHER6, &osc, 25.0);
+        self_check(&BUTCHER6, &Kepler3d, 100.0);
+        self_check(&RUNGE3, &osc, 100.0);
+        self_check(&RUNGE3, &Kepler3d, 400.0);
+        self_check(&KUTTA38, &osc, 50.0);
+        self_check(&KUTTA38, &Kepler3d, 200.0);
+        self_check(&DPRKN6, &osc, 25.0);
+        self_check(&DPRKN6, &Kepler3d, 200.0);
+        self_check(&CANDY_ROZMUS4, &osc, 50.0);
+        self_check(&CANDY_ROZMUS4, &Kepler3d, 200.0);
+        self_check(&SRKN6B, &osc, 50.0);
+        self_check(&SRKN6B, &Kepler3d, 200.0);
+        self_check(&SRKN6B, &DoubleWell, 100.0);
+        self_check(&BEEMAN_CLAIMS_SYMMETRIC, &DoubleWell, 400.0);
+        self_check(&LOBATTO_IIIA_BOTH, &DoubleWell, 100.0);
+    }
+
+    /// The error at `T/1000` relative to the scene's scale, and the order
+    /// measured between `T/500` and `T/1000`.
+    fn defect<M: Scheme, P: Scene<D>, const D: usize>(
+        scheme: &M,
+        scene: &P,
+        true_order: f64,
+    ) -> f64 {
+        let (p, _, fine) = measured_order(scheme, scene, steps(500.0));
+        let relative = fine / scene.scale();
+        println!(
+            "{:<40} {:<26} at T/1000 relative error {relative:.2e}, order {p:.2} (theory {true_order})",
+            scheme.meta().id,
+            scene.meta().id
+        );
+        assert!(
+            (p - true_order).abs() < 0.3,
+            "{}: order {p}",
+            scheme.meta().id
+        );
+        assert!(relative > 1e-6, "{}: {relative:e}", scheme.meta().id);
+        relative
+    }
+
+    #[test]
+    fn broken_schemes_have_their_true_order_with_a_visible_defect() {
+        defect(&BEEMAN_SIGN_TYPO, &LjTrimer, 1.0);
+        defect(&BEEMAN_SIGN_TYPO, &Toda3, 1.0);
+        defect(&ABM4_SWAPPED, &CoupledOscillators, 1.0);
+        defect(&ABM4_SWAPPED, &Toda3, 1.0);
+        defect(&ABM4_COLD_START, &Kepler3d, 2.0);
+        defect(&ABM4_COLD_START, &Planets4, 2.0);
+        defect(&DPRKN6_SWAPPED, &Kepler3d, 2.0);
+        defect(&DPRKN6_SWAPPED, &LjTrimer, 2.0);
+        defect(&CANDY_ROZMUS4_LAGGED, &Toda3, 1.0);
+        defect(&CANDY_ROZMUS4_LAGGED, &LjTrimer, 1.0);
+        defect(&SRKN6B_SIGN_FLIPPED, &Kepler3d, 2.0);
+        defect(&SRKN6B_SIGN_FLIPPED, &Planets4, 2.0);
+        defect(&BUTCHER6_SWAPPED, &CoupledOscillators, 2.0);
+        defect(&BUTCHER6_SWAPPED, &Planets4, 2.0);
+        defect(&BUTCHER6_DIFFERENCED, &Kepler3d, 1.0);
+        defect(&LOBATTO_STALE_CLOSING_FORCE, &Toda3, 1.0);
+        defect(&LOBATTO_STALE_CLOSING_FORCE, &DoubleWell, 1.0);
+    }
+
+    #[test]
+    fn correct_pairs_converge_on_their_scenes() {
+        fn show<M: Scheme, P: Scene<D>, const D: usize>(m: &M, s: &P, per_period: f64) {
+            let (p, coarse, fine) = measured_order(m, s, steps(per_period));
+            println!(
+                "{:<22} {:<26} T/{per_period:<5} relative {:.2e} -> {:.2e} order {p:.2}",
+                m.meta().id,
+                s.meta().id,
+                coarse / s.scale(),
+                fine / s.scale()
+            );
+            assert!(p > m.meta().order as f64 - 0.3, "{}", m.meta().id);
+        }
+        show(&BEEMAN, &LjTrimer, 200.0);
+        show(&BEEMAN, &DoubleWell, 200.0);
+        show(&ABM4, &Kepler3d, 200.0);
+        show(&ABM4, &CoupledOscillators, 100.0);
+        show(&LOBATTO_IIIA_IIIB, &DoubleWell, 100.0);
+        show(&LOBATTO_IIIA_IIIB, &Toda3, 50.0);
+        show(&BUTCHER6, &CoupledOscillators, 25.0);
+        show(&BUTCHER6, &Planets4, 25.0);
+        show(&RUNGE3, &Kepler3d, 200.0);
+        show(&RUNGE3, &LjTrimer, 200.0);
+        show(&CANDY_ROZMUS4, &Kepler3d, 100.0);
+        show(&CANDY_ROZMUS4, &Planets4, 50.0);
+        show(&DPRKN6, &Kepler3d, 50.0);
+        show(&DPRKN6, &Toda3, 25.0);
+        show(&SRKN6B, &LjTrimer, 50.0);
+        show(&SRKN6B, &DoubleWell, 50.0);
+        show(&KUTTA38, &Toda3, 50.0);
+        show(&BEEMAN_CLAIMS_SYMMETRIC, &DoubleWell, 200.0);
+        show(&LOBATTO_IIIA_BOTH, &DoubleWell, 100.0);
+        show(&LOBATTO_IIIA_BOTH, &Toda3, 50.0);
+    }
+
+    // -------------------------------------------------------------- geometry
+
+    /// `det - 1` of the Jacobian of `start`, one step, `state` at a point of
+    /// the double well's orbit, by central differences.
+    fn det_defect<M: Scheme>(scheme: &M, h: f64) -> f64 {
+        let scene = DoubleWell;
+        let s = scene.exact(0.4).unwrap();
+        let map = |q: f64, v: f64| {
+            let start = State::new(SVector::from([q]), SVector::from([v]));
+            let mut c = scheme.start(&scene, &start, h);
+            scheme.step(&scene, &mut c, h).expect("step");
+            let out = scheme.state(&c, h);
+            (out.q[0], out.v[0])
+        };
+        let e = 1e-5;
+        let (q, v) = (s.q[0], s.v[0]);
+        let (qp, vp) = map(q + e, v);
+        let (qm, vm) = map(q - e, v);
+        let (qp2, vp2) = map(q, v + e);
+        let (qm2, vm2) = map(q, v - e);
+        let j = nalgebra::Matrix2::new(qp - qm, qp2 - qm2, vp - vm, vp2 - vm2) / (2.0 * e);
+        j.determinant() - 1.0
+    }
+
+    /// `h` then `-h`, 50 steps each, runs started afresh, on the double well.
+    fn return_error<M: Scheme>(scheme: &M, h: f64) -> f64 {
+        let scene = DoubleWell;
+        let start = scene.initial();
+        let mut there = start;
+        integrate(scheme, &scene, &start, h, 50, |_, _, s| there = *s);
+        let mut back = there;
+        integrate(scheme, &scene, &there, -h, 50, |_, _, s| back = *s);
+        scene.phase_distance(&back, &start)
+    }
+
+    fn geometry<M: Scheme>(scheme: &M, symplectic: bool, symmetric: bool) {
+        let (det, back) = (det_defect(scheme, 0.3), return_error(scheme, 0.1));
+        println!(
+            "{:<40} det - 1 = {det:+.2e}  return = {back:.2e}",
+            scheme.meta().id
+        );
+        assert_eq!(
+            det.abs() < 1e-9,
+            symplectic,
+            "{}: {det:e}",
+            scheme.meta().id
+        );
+        assert_eq!(back < 1e-13, symmetric, "{}: {back:e}", scheme.meta().id);
+    }
+
+    #[test]
+    fn every_scheme_is_as_geometric_as_theory_says_on_the_double_well() {
+        geometry(&CANDY_ROZMUS4, true, true);
+        geometry(&SRKN6B, true, true);
+        // still symplectic and symmetric (the palindrome of exact flows kept)
+        geometry(&SRKN6B_SIGN_FLIPPED, true, true);
+        // neither, since the force lags
+        geometry(&CANDY_ROZMUS4_LAGGED, false, false);
+        geometry(&LOBATTO_IIIA_IIIB, true, true);
+        geometry(&LOBATTO_IIIA_BOTH, false, true);
+        geometry(&LOBATTO_STALE_CLOSING_FORCE, false, false);
+        geometry(&BEEMAN, false, false);
+        geometry(&BEEMAN_CLAIMS_SYMMETRIC, false, false);
+        geometry(&ABM4, false, false);
+        geometry(&BUTCHER6, false, false);
+        geometry(&RUNGE3, false, false);
+        geometry(&KUTTA38, false, false);
+        geometry(&DPRKN6, false, false);
+        // on the oscillator: the leading determinants of the two stale forces
+        let osc = Harmonic::default();
+        for (id, coefficient, det) in [
+            ("lagged", 0.9744, osc_det(&CANDY_ROZMUS4_LAGGED, &osc, 0.01)),
+            (
+                "stale closing",
+                1.0 / 6.0,
+                osc_det(&LOBATTO_STALE_CLOSING_FORCE, &osc, 0.01),
+            ),
+        ] {
+            println!("{id}: (det - 1)/z^2 = {:.4} at z = 0.01", det / 1e-4);
+            assert!((det / 1e-4 - coefficient).abs() < 0.01, "{id}: {det:e}");
+        }
+    }
+
+    fn osc_det<M: Scheme>(scheme: &M, osc: &Harmonic, h: f64) -> f64 {
+        let map = |q: f64, v: f64| {
+            let start = State::new(SVector::from([q]), SVector::from([v]));
+            let mut c = scheme.start(osc, &start, h);
+            scheme.step(osc, &mut c, h).expect("step");
+            let out = scheme.state(&c, h);
+            (out.q[0], out.v[0])
+        };
+        let (q1, v1) = map(1.0, 0.0);
+        let (q2, v2) = map(0.0, 1.0);
+        q1 * v2 - q2 * v1 - 1.0
+    }
+
+    /// `max |J^T Omega J - Omega|` of the Jacobian `J` of `start`, one step,
+    /// `state` at the scene's initial state, by central differences.
+    fn symplectic_residual<M: Scheme, P: Scene<D>, const D: usize>(
+        scheme: &M,
+        scene: &P,
+        h: f64,
+    ) -> f64 {
+        let s0 = scene.initial();
+        let map = |x: &[f64]| -> Vec<f64> {
+            let s = State::new(
+                SVector::from_fn(|i, _| x[i]),
+                SVector::from_fn(|i, _| x[D + i]),
+            );
+            let mut c = scheme.start(scene, &s, h);
+            scheme.step(scene, &mut c, h).expect("step");
+            let out = scheme.state(&c, h);
+            out.q.iter().chain(out.v.iter()).copied().collect()
+        };
+        let x0: Vec<f64> = s0.q.iter().chain(s0.v.iter()).copied().collect();
+        let n = 2 * D;
+        let e = 1e-5;
+        let mut j = DMatrix::<f64>::zeros(n, n);
+        for col in 0..n {
+            let (mut p, mut m) = (x0.clone(), x0.clone());
+            p[col] += e;
+            m[col] -= e;
+            let (fp, fm) = (map(&p), map(&m));
+            for row in 0..n {
+                j[(row, col)] = (fp[row] - fm[row]) / (2.0 * e);
+            }
+        }
+        let omega = DMatrix::<f64>::from_fn(n, n, |r, c| {
+            if c == r + D {
+                1.0
+            } else if r == c + D {
+                -1.0
+            } else {
+                0.0
+            }
+        });
+        (j.transpose() * &omega * &j - omega).amax()
+    }
+
+    #[test]
+    fn symplecticity_in_several_dimensions() {
+        let toda = Toda3.period() / 10.0;
+        let planets = Planets4.period() / 20.0;
+        let trimer = LjTrimer.period() / 20.0;
+        let kepler = Kepler3d.period() / 20.0;
+        let rows = [
+            (
+                "lobatto-iiia-iiib3 toda",
+                symplectic_residual(&LOBATTO_IIIA_IIIB, &Toda3, toda),
+                true,
+            ),
+            (
+                "lobatto-iiia-for-both toda",
+                symplectic_residual(&LOBATTO_IIIA_BOTH, &Toda3, toda),
+                false,
+            ),
+            (
+                "stale-closing toda",
+                symplectic_residual(&LOBATTO_STALE_CLOSING_FORCE, &Toda3, toda),
+                false,
+            ),
+            (
+                "lagged toda",
+                symplectic_residual(&CANDY_ROZMUS4_LAGGED, &Toda3, toda),
+                false,
+            ),
+            (
+                "candy-rozmus4 planets",
+                symplectic_residual(&CANDY_ROZMUS4, &Planets4, planets),
+                true,
+            ),
+            (
+                "srkn6b-b3-sign planets",
+                symplectic_residual(&SRKN6B_SIGN_FLIPPED, &Planets4, planets),
+                true,
+            ),
+            (
+                "srkn6b trimer",
+                symplectic_residual(&SRKN6B, &LjTrimer, trimer),
+                true,
+            ),
+            (
+                "lagged trimer",
+                symplectic_residual(&CANDY_ROZMUS4_LAGGED, &LjTrimer, trimer),
+                false,
+            ),
+            (
+                "candy-rozmus4 kepler",
+                symplectic_residual(&CANDY_ROZMUS4, &Kepler3d, kepler),
+                true,
+            ),
+            (
+                "srkn6b-b3-sign kepler",
+                symplectic_residual(&SRKN6B_SIGN_FLIPPED, &Kepler3d, kepler),
+                true,
+            ),
+        ];
+        for (id, r, symplectic) in rows {
+            println!("{id:<28} |J^T W J - W| = {r:.2e} (central differences)");
+            // central differences are good to about 1e-7 here
+            assert!(if symplectic { r < 1e-6 } else { r > 1e-5 }, "{id}: {r:e}");
+        }
+    }
+
+    // ------------------------------------------------------------- long runs
+
+    /// Energy errors over `periods` periods at 100 steps a period: the
+    /// largest in the first tenth, the largest in the last tenth, and
+    /// whether the run completed.
+    fn long_run<M: Scheme, P: Scene<D>, const D: usize>(
+        scheme: &M,
+        scene: &P,
+        periods: u64,
+    ) -> (f64, f64, bool) {
+        let n = 100 * periods;
+        let h = scene.period() / 100.0;
+        let e0 = scene.energy(&scene.initial());
+        let (mut early, mut late) = (0.0f64, 0.0f64);
+        let outcome = integrate(scheme, scene, &scene.initial(), h, n, |k, _, s| {
+            let de = (scene.energy(s) - e0).abs();
+            if k <= n / 10 {
+                early = early.max(de);
+            }
+            if k >= n - n / 10 {
+                late = late.max(de);
+            }
+        });
+        println!(
+            "{:<40} {:<26} |dE| first tenth {early:.2e}, last tenth {late:.2e}, {}",
+            scheme.meta().id,
+            scene.meta().id,
+            outcome
+        );
+        (early, late, outcome.completed())
+    }
+
+    fn bounded<M: Scheme, P: Scene<D>, const D: usize>(scheme: &M, scene: &P) {
+        let (early, late, done) = long_run(scheme, scene, 10_000);
+        assert!(done && late < 2.0 * early + 1e-12, "{}", scheme.meta().id);
+    }
+
+    fn drifts<M: Scheme, P: Scene<D>, const D: usize>(scheme: &M, scene: &P) {
+        let (early, late, done) = long_run(scheme, scene, 10_000);
+        let e0 = scene.energy(&scene.initial()).abs();
+        assert!(
+            !done || late > 0.1 * e0,
+            "{}: {early:e} {late:e}",
+            scheme.meta().id
+        );
+    }
+
+    #[test]
+    fn long_runs_drift_or_not_as_theory_says() {
+        // symplectic or symmetric, correct: bounded
+        bounded(&CANDY_ROZMUS4, &Kepler3d);
+        bounded(&CANDY_ROZMUS4, &Planets4);
+        bounded(&LOBATTO_IIIA_IIIB, &DoubleWell);
+        bounded(&LOBATTO_IIIA_IIIB, &Toda3);
+        bounded(&SRKN6B, &LjTrimer);
+        bounded(&SRKN6B, &DoubleWell);
+        // symmetric but not symplectic, or with a false claim of symmetry:
+        // bounded on these reversible integrable scenes
+        bounded(&LOBATTO_IIIA_BOTH, &DoubleWell);
+        bounded(&LOBATTO_IIIA_BOTH, &Toda3);
+        bounded(&BEEMAN_CLAIMS_SYMMETRIC, &DoubleWell);
+        // the stale forces: exponential growth
+        drifts(&CANDY_ROZMUS4_LAGGED, &Toda3);
+        drifts(&CANDY_ROZMUS4_LAGGED, &LjTrimer);
+        drifts(&LOBATTO_STALE_CLOSING_FORCE, &Toda3);
+        drifts(&LOBATTO_STALE_CLOSING_FORCE, &DoubleWell);
+        // claiming nothing: shown, not judged
+        long_run(&BEEMAN, &LjTrimer, 10_000);
+        long_run(&ABM4, &Kepler3d, 10_000);
+        long_run(&ABM4, &CoupledOscillators, 10_000);
+        // flipped but still symplectic and symmetric: bounded
+        bounded(&SRKN6B_SIGN_FLIPPED, &Kepler3d);
+        bounded(&SRKN6B_SIGN_FLIPPED, &Planets4);
+    }
+
+    #[test]
+    fn the_planets_keep_apart_for_ten_thousand_inner_periods() {
+        let scene = Planets4;
+        let h = scene.period() / 100.0;
+        let mut closest = [f64::INFINITY; 3];
+        let outcome = integrate(
+            &CANDY_ROZMUS4,
+            &scene,
+            &scene.initial(),
+            h,
+            1_000_000,
+            |_, _, s| {
+                for (k, (i, j)) in [(1, 2), (2, 3), (1, 0)].into_iter().enumerate() {
+                    closest[k] = closest[k].min(Planets4::separation(s, i, j));
+                }
+            },
+        );
+        println!("closest approaches (1-2, 2-3, 1-star): {closest:?}");
+        assert!(outcome.completed());
+        assert!(closest[0] > 0.8 && closest[1] > 1.6 && closest[2] > 0.9);
+    }
+
+    // ---------------------------------------------------------------- entries
+
+    #[test]
+    fn entries_are_many_enough_and_ids_unique() {
+        let e = entries();
+        let correct = e
+            .iter()
+            .filter(|x| x.truth == crate::corpus::Truth::Correct)
+            .count();
+        let broken = e.len() - correct;
+        println!("{correct} correct, {broken} broken");
+        assert!(correct >= 15 && broken >= 15);
+    }
+}

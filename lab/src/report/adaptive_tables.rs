@@ -1,0 +1,232 @@
+//! The report's "Adaptive step control" section: the tolerance ladders of
+//! the crate's own DPRKN6(4) and DPRKN8(6) pairs and the peer
+//! (deterministic), and
+//! their wall times (machine-dependent).
+
+use super::markdown::{Table, opt, order, sci};
+use super::work_tables::{RACE_SCENES, RACE_TARGETS, time_reach};
+use crate::peer::PEER_NAME;
+use crate::suite::adaptive::AdaptiveRecords;
+use crate::suite::work_precision::WorkTiming;
+use std::fmt::Write as _;
+use stepladder::measure::adaptive::tolerance_ladder::{
+    ENERGY_PERIODS, GEOMETRY_TOLERANCE, MIN_FIT_POINTS, ROUND_OFF_SHARE, ToleranceLadderRecord,
+};
+use stepladder::measure::cost::work_points::cost_to_reach;
+use stepladder::tolerance::ERROR_CEILING;
+
+/// The tolerances whose costs the summary table shows.
+pub const SHOWN_TOLERANCES: [f64; 3] = [1e-6, 1e-9, 1e-12];
+
+/// The deterministic section.
+pub fn adaptive_section(records: &AdaptiveRecords) -> String {
+    let mut out = String::from("\n## Adaptive step control\n\n");
+    out.push_str(&method());
+    out.push_str(&summary_table(&records.ladders));
+    out.push_str("\n### Every tolerance\n\n");
+    for r in &records.ladders {
+        let _ = writeln!(out, "\n#### {} on `{}`\n", r.integrator, r.scene);
+        out.push_str(&ladder_table(r));
+    }
+    out
+}
+
+fn method() -> String {
+    format!(
+        "Each adaptive integrator runs from the scene's initial state to the order \
+         study's `t_end` at relative and absolute tolerance `TOL`, one a decade, and is \
+         judged like a fixed-step ladder: its error is the largest phase-space distance \
+         to the exact solution over its accepted steps, its cost the force evaluations it \
+         spent (rejected steps and the first step's guess included). An error-per-step \
+         controller whose estimate behaves like `h^m`, advancing with an order-`p` \
+         solution, settles at steps `h ~ TOL^(1/m)` and a global error `~ TOL^(p/m)` \
+         (Hairer, Nørsett, Wanner I, II.4): `6/5` for DPRKN6(4) (`m = q + 1 = 5`), `8/7` for \
+         DPRKN8(6). Where a pair's exponent misses, its accepted steps are fitted against \
+         `TOL` (the controller's half of the claim, `N ~ TOL^(-1/m)`) and its method is run \
+         at fixed steps over the same step counts (the method's half): a method still above \
+         its asymptotic order at those steps, with the exponent that order predicts, leaves \
+         the verdict undecided; anything else fails it. DOP853's \
+         estimate `h err5^2 / sqrt(err5^2 + 0.01 err3^2)` behaves like `h^6` while its \
+         fifth-order part dominates and like `h^8` once the third-order one does, so its \
+         exponent moves from 4/3 towards 1 along the ladder and is measured, not judged. \
+         The exponent is fitted as the order study fits an order, in `x = TOL^(1/m)`, with \
+         the fit's interval over `m`, over the points that reached `t_end` with an error below {ERROR_CEILING} and at least {} times the \
+         round-off bound `8 eps N scale` (at least {MIN_FIT_POINTS} points). At `TOL = \
+         {}` an energy run of {ENERGY_PERIODS} periods is classified by the growth of \
+         `|E - E(T)|` over its last two decades, and a round trip (to `t_end`, velocities \
+         reversed, back) is compared with the reversibility study's round-off bound. \
+         Neither method is symplectic or symmetric, so the energy is expected to drift and \
+         the round trip to miss by about the global error.\n\n",
+        1.0 / ROUND_OFF_SHARE,
+        sci(GEOMETRY_TOLERANCE),
+    )
+}
+
+/// One line per integrator and scene: exponent against theory, cost and
+/// error at a few tolerances, energy class and round trip.
+pub fn summary_table(records: &[ToleranceLadderRecord]) -> String {
+    let mut header: Vec<String> = [
+        "integrator",
+        "scene",
+        "error ~ TOL^k",
+        "95% interval",
+        "theory",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    for tol in SHOWN_TOLERANCES {
+        header.push(format!("evals / error at {tol:.0e}"));
+    }
+    header.extend([
+        "energy at 1e-8".to_string(),
+        "round trip".into(),
+        "verdict".into(),
+    ]);
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let mut t = Table::new(&header);
+    for r in records {
+        let mut row = vec![r.integrator.to_string(), format!("`{}`", r.scene)];
+        match &r.proportionality {
+            Some(p) => row.extend([
+                order(p.exponent),
+                format!("[{}, {}]", order(p.ci95[0]), order(p.ci95[1])),
+                p.theory.map_or("measured only".into(), order),
+            ]),
+            None => row.extend([
+                "-".into(),
+                "-".into(),
+                r.claims
+                    .proportionality
+                    .map_or("measured only".into(), order),
+            ]),
+        }
+        for tol in SHOWN_TOLERANCES {
+            row.push(r.at(tol).map_or("-".into(), |p| {
+                format!("{} / {}", p.evaluations, opt(p.error, sci))
+            }));
+        }
+        row.push(r.energy.map_or("-".into(), |e| {
+            format!(
+                "{} (g = {})",
+                e.class.map_or("-", |c| c.name()),
+                opt(e.growth_exponent, |g| format!("{g:.2}"))
+            )
+        }));
+        row.push(r.round_trip.map_or("-".into(), |rt| {
+            format!(
+                "{} ({})",
+                opt(rt.distance, sci),
+                if rt.returns { "returns" } else { "misses" }
+            )
+        }));
+        row.push(r.verdict.name().to_string());
+        t.row(row);
+    }
+    t.render()
+}
+
+/// Every tolerance of one ladder.
+pub fn ladder_table(r: &ToleranceLadderRecord) -> String {
+    let mut t = Table::new(&[
+        "TOL",
+        "evaluations",
+        "accepted",
+        "rejected",
+        "end",
+        "error",
+        "round-off bound",
+        "fitted",
+    ]);
+    for p in &r.points {
+        t.row(vec![
+            sci(p.tolerance),
+            p.evaluations.to_string(),
+            p.accepted.to_string(),
+            p.rejected.to_string(),
+            p.end.name().to_string(),
+            opt(p.error, sci),
+            sci(p.round_off),
+            if p.fitted { "yes" } else { "no" }.to_string(),
+        ]);
+    }
+    let mut out = t.render();
+    let _ = writeln!(out, "\n{}: {}.", r.verdict.name(), r.reason);
+    out
+}
+
+/// The wall time of each ladder (machine-dependent).
+pub fn timing_section(records: &AdaptiveRecords, work: &[WorkTiming]) -> String {
+    let mut out = String::from(
+        "\n### The race by time\n\nThe Kepler race of the deterministic part, by wall \
+         time: the crate's fastest adaptive pair (each tolerance's run to `t_end` timed \
+         whole, fastest of several, interpolated to the target like its evaluations) and \
+         the fastest fixed-step catalogue scheme (from the time-to-target table) against \
+         the peer, timed the same way as the pairs.\n\n",
+    );
+    let mut race = Table::new(&[
+        "scene",
+        "target",
+        "fastest own pair",
+        "time",
+        "fastest fixed step",
+        "time",
+        PEER_NAME,
+        "peer / best",
+    ]);
+    for scene in RACE_SCENES {
+        let Some(w) = work.iter().find(|w| w.scene == scene) else {
+            continue;
+        };
+        for target in RACE_TARGETS {
+            let Some(fixed) = w.fastest_global.iter().find(|f| f.target == target) else {
+                continue;
+            };
+            let own = records
+                .ladders
+                .iter()
+                .zip(&records.point_seconds)
+                .filter(|(l, s)| l.scene == scene && !s.is_empty())
+                .filter_map(|(l, s)| {
+                    let points: Vec<(f64, Option<f64>)> = s
+                        .iter()
+                        .zip(&l.points)
+                        .filter(|(t, _)| t.is_finite())
+                        .map(|(&t, p)| (t, p.error))
+                        .collect();
+                    let reach = cost_to_reach(&points, target);
+                    Some((reach.cost()?, reach, l.integrator))
+                })
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            let best = [own.map(|o| o.0), fixed.seconds.cost()]
+                .into_iter()
+                .flatten()
+                .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.min(x))));
+            race.row(vec![
+                format!("`{scene}`"),
+                format!("{target:.0e}"),
+                own.map_or("none".into(), |o| o.2.to_string()),
+                own.map_or("not reached".into(), |o| time_reach(o.1)),
+                fixed.scheme.map_or("none".into(), |s| format!("`{s}`")),
+                time_reach(fixed.seconds),
+                time_reach(fixed.peer_seconds),
+                match (best, fixed.peer_seconds.cost()) {
+                    (Some(a), Some(b)) => format!("{:.2}", b / a),
+                    _ => "-".into(),
+                },
+            ]);
+        }
+    }
+    out.push_str(&race.render());
+    out.push_str("\n### Adaptive tolerance ladders\n\n");
+    let mut t = Table::new(&["integrator", "scene", "wall time"]);
+    for (r, time) in records.ladders.iter().zip(&records.times) {
+        t.row(vec![
+            r.integrator.to_string(),
+            format!("`{}`", r.scene),
+            format!("{:.1} ms", time.as_secs_f64() * 1e3),
+        ]);
+    }
+    out.push_str(&t.render());
+    out
+}

@@ -1,0 +1,240 @@
+//! The report's round-off sections: floors against the step, and long runs
+//! of exactly conserved quantities.
+
+use super::markdown::{Table, opt, sci};
+use crate::suite::round_off::RoundoffRecords;
+use std::fmt::Write as _;
+use stepladder::measure::roundoff::floor::{Floor, PairRecord, RoundoffRecord};
+use stepladder::measure::roundoff::longrun::LongrunRecord;
+
+/// Both sections, as they appear in REPORT.md.
+pub fn sections(records: &RoundoffRecords) -> String {
+    let mut out = String::new();
+    out.push_str("\n## Round-off floors\n\n");
+    out.push_str(FLOORS_METHOD);
+    for r in &records.floors {
+        let _ = writeln!(
+            out,
+            "\n### {} ({} period{}, up to {} steps)\n",
+            r.scene,
+            r.periods,
+            if r.periods == 1.0 { "" } else { "s" },
+            r.max_steps
+        );
+        out.push_str(&floor_table(r));
+        out.push('\n');
+        out.push_str(&law_table(r));
+        for p in &r.pairs {
+            out.push_str(&pair_rungs(p));
+        }
+    }
+    out.push_str(FLOORS_EXPLAINED);
+    out.push_str("\n## Long runs: round-off growth\n\n");
+    out.push_str(LONGRUN_METHOD);
+    out.push_str(&longrun_table(&records.longrun));
+    out.push_str(LONGRUN_EXPLAINED);
+    out
+}
+
+const FLOORS_METHOD: &str = "Each plain Verlet form runs beside its compensated-summation variant \
+(the same map in exact arithmetic; position and velocity sums keep what rounding drops, \
+by Knuth's TwoSum) over a ladder of steps halving from 1/8 of a period, until the plain \
+scheme's error has failed twice in a row to improve on its smallest value, or the finest \
+step allowed. `error` is the largest phase-space error against the exact solution at 4096 \
+evenly spaced points of the run; `round-off` is the largest distance between the plain and \
+the compensated solution, the plain scheme's round-off with truncation removed, measured \
+even where truncation hides it. The floor is the smallest error reached; a scheme stops \
+improving at the step of its floor when a finer step did worse.\n";
+
+const FLOORS_EXPLAINED: &str = "\n### Why the floors are where they are\n\n\
+With unit round-off `u = eps/2`, motion of size `A` and frequency `w`, and `N = T/h` steps \
+in a run of length `T`:\n\n\
+- **Velocity Verlet and leap-frog** round `q + h v` and `v + h a` to the precision of \
+`q` and `v`: about `u A` per step, not magnified by the step. The flow turns such \
+perturbations without growing them (on the orbit it also turns an energy error into a phase \
+drift, which multiplies them by about `w T` without changing the law), so `N` unbiased \
+roundings add up as a random walk, `u A N^(1/2)`: at fixed `T`, `h^(-1/2)`. A bias in the \
+rounding would make it `u A N`, `h^(-1)`.\n\
+- **The two-step form** computes `2 q(n) - q(n-1)` exactly (its operands are within a \
+factor two of each other, so the subtraction is exact by Sterbenz's lemma), and then adds \
+`h^2 a`, which loses its bits below the last bit of `q`: `u A` per step in the second \
+difference, which is `h` times the velocity. A random walk of velocity kicks `u A / h` \
+integrates to a position error `u A N^(1/2) / (h w) = u A N^(3/2) / (w T)`: at fixed \
+`T`, `h^(-3/2)`, a whole power of `h` steeper, so the floor comes far earlier and higher. \
+Its central-difference velocity, a rounded difference divided by `2 h`, adds `u A / h` \
+at each read-out without accumulating.\n\
+- **The compensated variants** lose only the rounding of the increments and of the force \
+at the rounded position, `u h w A` per step: `u A h w N^(1/2)`, falling with `h`. What \
+remains is what no summation can remove (the rounding of the output state and of the exact \
+solution), a few `u A`.\n\n\
+With the truncation error `C h^2`, `C h^2 + R h^(-g)` is smallest at \
+`h* = (g R / 2C)^(1/(2+g))`, where it is `(1 + 2/g) C h*^2`: five times the truncation \
+error for `g = 1/2`, 7/3 for `g = 3/2`. The law table fits `R` and `g` to the measured \
+round-off and `C` to the compensated error, and compares the model's minimum with the \
+floor the ladder found (`g` is also the exponent of `N`: at fixed `T`, `N` is \
+proportional to `1/h`). Whatever the model's constants, a plain floor at step `h_f` is at \
+least the truncation error there, less what round-off, random in direction, may cancel \
+(at most half of an error that grows steadily along the run), while the compensated \
+variant's error at `h_f` is its truncation alone and falls four-fold with each further \
+halving: its floor is lower by at least `4^j / 2` when the ladder runs `j` rungs past the \
+plain floor, which the tests assert.\n";
+
+const LONGRUN_METHOD: &str = "Each Verlet form and its compensated variant runs 16 times \
+from 16 evenly spaced points of the exact orbit, at 100 steps a period, following a \
+quantity it conserves exactly in exact arithmetic, so that whatever the quantity does is \
+round-off: on the oscillator the modified energy `v^2/2 + w^2 x^2 (1 - (h w)^2/4)/2`, \
+which velocity Verlet's map conserves and which leap-frog and the two-step form conserve \
+too, their synchronised velocities being velocity Verlet's in exact arithmetic; on the \
+circular orbit the angular momentum `x v_y - y v_x`, which every kick (along `-r`) and \
+every drift (along `v`) leaves unchanged. The true energy would not do: it oscillates by \
+`(h w)^2/4 = 1e-3` of itself, far above any round-off. `g` is the exponent of the root \
+mean square of `(Q - Q0)/Q0` over the runs, fitted over the last two decades of time \
+(`t^(1/2)` for a random walk, `t` for biased rounding, `t^0` for an error that does not \
+accumulate), with its jackknife standard error over the runs; one run alone would do \
+poorly, a single random walk's exponent varying by 0.15 from one realisation to the next. \
+`per step` is the final root mean square over `eps N^(1/2)`: a random walk's step in \
+units of `eps`.\n\n";
+
+const LONGRUN_EXPLAINED: &str = "\nEach rounding is at most half an ulp, about `0.42 u` of \
+the rounded number in root mean square (`u = eps/2`). A plain velocity Verlet step rounds \
+`q` once and `v` twice, changing the modified energy by `0.83 u cos^2 phi` and twice \
+`0.83 u sin^2 phi` of itself at orbital phase `phi`, with random signs: `0.88 u = 0.44 eps` a step in root \
+mean square over the orbit, a random walk `0.44 eps N^(1/2)`. The two-step form's one \
+rounding, of `q(n+1)`, changes the velocity by `delta / h` and the modified energy by \
+`0.83 u |sin phi cos phi| / (h w)`: `0.15 eps / (h w)`, about 2.3 `eps` a step at 100 steps \
+a period, five times velocity Verlet's, by the same law. Compensated summation leaves the \
+rounding of the increments, `u h w` a step: the same law, `h w` times smaller, beneath the \
+rounding of the read-out state and of `Q` itself, a few `eps` that do not accumulate.\n";
+
+/// One row per scheme: the floor and where it was reached.
+pub fn floor_table(r: &RoundoffRecord) -> String {
+    let mut t = Table::new(&[
+        "scheme",
+        "floor (smallest error)",
+        "at h",
+        "round-off reaches truncation at h",
+        "stops improving",
+    ]);
+    let row = |t: &mut Table, f: &Option<Floor>, crossover: Option<f64>| {
+        let Some(f) = f else {
+            return;
+        };
+        t.row(vec![
+            format!("`{}`", f.scheme),
+            sci(f.floor),
+            sci(f.h),
+            opt(crossover, sci),
+            if f.stopped {
+                format!("at h = {}", sci(f.h))
+            } else {
+                "not within the ladder".into()
+            },
+        ]);
+    };
+    for p in &r.pairs {
+        row(&mut t, &p.plain_floor, p.crossover_h);
+        row(&mut t, &p.compensated_floor, None);
+    }
+    t.render()
+}
+
+/// One row per plain scheme: the fitted round-off law and the model's floor.
+pub fn law_table(r: &RoundoffRecord) -> String {
+    let mut t = Table::new(&[
+        "scheme",
+        "round-off ~ h^(-g): g",
+        "theory g",
+        "R",
+        "truncation ~ h^p: p",
+        "C",
+        "model h*",
+        "model floor",
+        "floor / compensated floor",
+    ]);
+    for p in &r.pairs {
+        let theory = if p.plain.starts_with("stormer") {
+            "3/2"
+        } else {
+            "1/2"
+        };
+        t.row(vec![
+            format!("`{}`", p.plain),
+            opt(p.round_off_fit.map(|f| -f.slope), |g| {
+                let f = p.round_off_fit.expect("present");
+                format!("{g:.2} [{:.2}, {:.2}]", -f.ci95[1], -f.ci95[0])
+            }),
+            theory.into(),
+            opt(p.round_off_fit.map(|f| f.intercept.exp()), sci),
+            opt(p.truncation_fit.map(|f| f.slope), |x| format!("{x:.3}")),
+            opt(p.truncation_fit.map(|f| f.intercept.exp()), sci),
+            opt(p.predicted_h, sci),
+            opt(p.predicted_floor, sci),
+            match (&p.plain_floor, &p.compensated_floor) {
+                (Some(a), Some(b)) if a.stopped && b.floor > 0.0 => {
+                    format!("{:.1}", a.floor / b.floor)
+                }
+                _ => "-".into(),
+            },
+        ]);
+    }
+    t.render()
+}
+
+/// One pair's ladder, rung by rung, folded.
+pub fn pair_rungs(p: &PairRecord) -> String {
+    let mut out = format!(
+        "\n<details><summary><code>{}</code> and <code>{}</code>, rung by rung</summary>\n\n",
+        p.plain, p.compensated
+    );
+    let mut t = Table::new(&[
+        "h",
+        "steps",
+        "plain error",
+        "compensated error",
+        "round-off (plain - compensated)",
+    ]);
+    for g in &p.rungs {
+        t.row(vec![
+            sci(g.h),
+            g.steps.to_string(),
+            opt(g.plain_error, sci),
+            opt(g.compensated_error, sci),
+            opt(g.round_off, sci),
+        ]);
+    }
+    out.push_str(&t.render());
+    out.push_str("\n</details>\n");
+    out
+}
+
+/// One row per long run.
+pub fn longrun_table(records: &[LongrunRecord]) -> String {
+    let mut t = Table::new(&[
+        "scheme",
+        "scene",
+        "quantity",
+        "runs x steps",
+        "largest relative change",
+        "rms at the end",
+        "per step (eps)",
+        "g",
+        "class",
+    ]);
+    for r in records {
+        t.row(vec![
+            format!("`{}`", r.scheme),
+            format!("`{}`", r.scene),
+            r.invariant.name().into(),
+            format!("{} x {}", r.runs, r.steps),
+            sci(r.max_relative_error),
+            sci(r.final_rms),
+            format!("{:.2}", r.per_step_ulps),
+            match (r.growth_exponent, r.growth_standard_error) {
+                (Some(g), Some(se)) => format!("{g:.2} -+ {se:.2}"),
+                _ => "-".into(),
+            },
+            r.class.map_or("-", |c| c.name()).into(),
+        ]);
+    }
+    t.render()
+}

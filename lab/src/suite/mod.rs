@@ -1,0 +1,226 @@
+//! The full suite: every study on every catalogue scheme and built-in scene.
+//! Cases run in parallel on scoped threads, but results are stored by case,
+//! so the records are the same whatever the thread count.
+
+use stepladder::error::Error;
+use stepladder::measure::case::{Case, case};
+
+pub mod adaptive;
+pub mod hard_cases;
+pub mod round_off;
+pub mod work_precision;
+
+use crate::suite::hard_cases::{HardCases, hard_jobs, run_hard_jobs};
+use std::time::{Duration, Instant};
+use stepladder::measure::Verdict;
+use stepladder::measure::accuracy::order::{OrderRecord, OrderSpec};
+use stepladder::measure::accuracy::phase::{PhaseRecord, phase_error};
+use stepladder::measure::accuracy::scene_check::{SceneCheck, check_scene};
+use stepladder::measure::accuracy::trajectory::{TrajectoryRecord, earth_sun_experiments};
+use stepladder::measure::geometry::energy::{EnergyRecord, EnergySpec};
+use stepladder::measure::geometry::reverse::{ReverseRecord, ReverseSpec};
+use stepladder::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec};
+use stepladder::measure::stability::{StabilityRecord, stability};
+use stepladder::parallel::parallel_map;
+use stepladder::scene::{AnyScene, Scene, SceneVisitor};
+use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
+
+/// Every record of one scheme on one scene.
+#[derive(Clone, Debug)]
+pub struct CaseRecords {
+    /// Global order.
+    pub order: OrderRecord,
+    /// Global order with the exact solution withheld: the twin of `order`,
+    /// measured against half-step runs.
+    pub hidden_order: OrderRecord,
+    /// Energy over a long run.
+    pub energy: EnergyRecord,
+    /// Tangent map.
+    pub symplectic: SymplecticRecord,
+    /// Forward and back.
+    pub reverse: ReverseRecord,
+    /// Wall time of the case's studies (machine-dependent).
+    pub time: Duration,
+}
+
+/// Every record of a suite run.
+#[derive(Clone, Debug)]
+pub struct SuiteRecords {
+    /// One entry per scheme and scene, catalogue-major, scene-minor.
+    pub cases: Vec<CaseRecords>,
+    /// Phase error on the oscillator, one per scheme.
+    pub phase: Vec<PhaseRecord>,
+    /// Linear stability on the oscillator, one per scheme.
+    pub stability: Vec<StabilityRecord>,
+    /// The check of every scene.
+    pub scenes: Vec<SceneCheck>,
+    /// The course notes' Earth-Sun experiments (Euler and velocity Verlet).
+    pub earth_sun: Vec<TrajectoryRecord>,
+    /// Round-off floors and long runs of the Verlet forms and their
+    /// compensated variants.
+    pub roundoff: crate::suite::round_off::RoundoffRecords,
+    /// The hard cases: eccentric orbits, the separatrix, escape or trapped.
+    pub hard: HardCases,
+    /// The verdict corpus: schemes and scenes outside the catalogue, each
+    /// judged against the verdicts it must get.
+    pub corpus: Vec<crate::corpus::Outcome>,
+    /// The work-precision study, one record per scene.
+    pub work: Vec<crate::suite::work_precision::WorkRecord>,
+    /// Its wall times, one per scene (machine-dependent).
+    pub work_timing: Vec<crate::suite::work_precision::WorkTiming>,
+    /// Every scheme's cost of a step against the hand-written floor
+    /// (machine-dependent).
+    pub speed: stepladder::measure::cost::step_time::SpeedRecord,
+    /// The tolerance ladders of the adaptive integrators.
+    pub adaptive: crate::suite::adaptive::AdaptiveRecords,
+    /// Wall time of the whole suite.
+    pub total: Duration,
+    /// Threads used.
+    pub threads: usize,
+}
+
+impl SuiteRecords {
+    /// The order records, in case order.
+    pub fn order(&self) -> Vec<&OrderRecord> {
+        self.cases.iter().map(|c| &c.order).collect()
+    }
+
+    /// `(passed, total)` over every verdict of the suite (phase records
+    /// without an analytic value have none).
+    pub fn verdicts(&self) -> (usize, usize) {
+        let mut all: Vec<Verdict> = Vec::new();
+        for c in &self.cases {
+            all.extend([
+                c.order.verdict,
+                c.energy.verdict,
+                c.symplectic.verdict,
+                c.reverse.verdict,
+            ]);
+        }
+        all.extend(self.phase.iter().filter_map(|p| p.verdict));
+        all.extend(self.scenes.iter().map(|s| s.verdict));
+        (
+            all.iter().filter(|v| **v == Verdict::Pass).count(),
+            all.len(),
+        )
+    }
+}
+
+/// Every catalogue scheme bound to every built-in scene.
+pub fn all_cases() -> Vec<Box<dyn Case>> {
+    let scenes = AnyScene::all();
+    scheme_ids()
+        .into_iter()
+        .flat_map(|id| {
+            scenes
+                .iter()
+                .map(move |s| case(id, s).expect("catalogue ids are valid"))
+        })
+        .collect()
+}
+
+/// Runs every study of one case with default settings.
+pub fn run_case(c: &dyn Case) -> Result<CaseRecords, Error> {
+    let t = Instant::now();
+    Ok(CaseRecords {
+        order: c.order(&OrderSpec::default())?,
+        hidden_order: c.hidden_order(&OrderSpec::default())?,
+        energy: c.energy(&EnergySpec::default())?,
+        symplectic: c.symplectic(&SymplecticSpec::default())?,
+        reverse: c.reverse(&ReverseSpec::default())?,
+        time: t.elapsed(),
+    })
+}
+
+/// Runs the suite on `threads` threads (at least one), calling
+/// `progress(done, total, case)` as each case finishes.
+pub fn run_suite(
+    threads: usize,
+    progress: &(dyn Fn(usize, usize, &dyn Case) + Sync),
+) -> Result<SuiteRecords, Error> {
+    let cases = all_cases();
+    let start = Instant::now();
+    let threads = threads.clamp(1, cases.len().max(1));
+    let total = cases.len();
+    let cases = parallel_map(&cases, threads, |c| run_case(c.as_ref()), &|done, c| {
+        progress(done, total, c.as_ref())
+    })
+    .into_iter()
+    .collect::<Result<Vec<_>, Error>>()?;
+    let (phase, stability) = scheme_ids()
+        .into_iter()
+        .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
+        .unzip();
+    let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
+    let hard = run_hard_jobs(hard_jobs(), threads)?;
+    let corpus = crate::corpus::judge_all(&crate::corpus::entries(), threads)?;
+    let roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
+    let (work, work_timing, speed) = speed_against_error(&cases, threads);
+    let adaptive = crate::suite::adaptive::adaptive_study(threads)?;
+    Ok(SuiteRecords {
+        cases,
+        phase,
+        stability,
+        scenes,
+        earth_sun: earth_sun_experiments(),
+        roundoff,
+        hard,
+        corpus,
+        work,
+        work_timing,
+        speed,
+        adaptive,
+        total: start.elapsed(),
+        threads,
+    })
+}
+
+/// The work-precision study on every scene from the cases' order records,
+/// then the cost of a step against the floor.
+fn speed_against_error(
+    cases: &[CaseRecords],
+    threads: usize,
+) -> (
+    Vec<crate::suite::work_precision::WorkRecord>,
+    Vec<crate::suite::work_precision::WorkTiming>,
+    stepladder::measure::cost::step_time::SpeedRecord,
+) {
+    let scenes = AnyScene::all();
+    let orders: Vec<Vec<&OrderRecord>> = scenes
+        .iter()
+        .map(|s| {
+            let id = s.meta().id;
+            cases
+                .iter()
+                .map(|c| &c.order)
+                .filter(|o| o.scene == id)
+                .collect()
+        })
+        .collect();
+    let (work, timing) = crate::suite::work_precision::work_study(&scenes, &orders, threads);
+    let speed = stepladder::measure::cost::step_time::speed(
+        stepladder::measure::cost::step_time::SPEED_STEPS,
+        stepladder::measure::cost::step_time::SPEED_REPEATS,
+    );
+    (work, timing, speed)
+}
+
+/// The studies of a scheme alone, on the oscillator.
+struct SchemeStudies;
+impl SchemeVisitor for SchemeStudies {
+    type Output = (PhaseRecord, StabilityRecord);
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output {
+        (phase_error(scheme), stability(scheme))
+    }
+}
+
+struct CheckOf;
+impl SceneVisitor for CheckOf {
+    type Output = SceneCheck;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        scene: &S,
+    ) -> SceneCheck {
+        check_scene(scene)
+    }
+}

@@ -1,0 +1,66 @@
+//! REPORT.md is generated, never hand-edited: its deterministic part must be
+//! what the current code produces, and writing it must never lose the old one.
+
+use stepladder_lab::report::{deterministic, deterministic_part, write_atomically};
+
+#[test]
+fn committed_report_is_up_to_date() {
+    let path = crate::common::root().join("REPORT.md");
+    let committed = std::fs::read_to_string(&path).expect("REPORT.md is committed");
+    let fresh = deterministic(super::common::suite());
+    assert!(
+        deterministic_part(&committed) == fresh,
+        "REPORT.md is stale: regenerate it with `cargo run --release`"
+    );
+}
+
+/// The figures committed beside REPORT.md are the ones the current code
+/// draws from the suite's records, file for file, with none missing and
+/// none left over. They show errors, force evaluations and energies, never
+/// wall time, so they are the same on every machine and thread count.
+#[test]
+fn committed_figures_are_up_to_date() {
+    let dir = crate::common::root().join(stepladder_lab::report::figures::FOLDER);
+    let fresh = stepladder_lab::report::figures::deterministic_figures(super::common::suite())
+        .expect("the figures draw");
+    let mut stale = Vec::new();
+    for (name, svg) in &fresh {
+        match std::fs::read_to_string(dir.join(name)) {
+            Ok(committed) if committed == *svg => {}
+            Ok(_) => stale.push(format!("{name} differs")),
+            Err(_) => stale.push(format!("{name} is missing")),
+        }
+    }
+    let mut committed: Vec<String> = std::fs::read_dir(&dir)
+        .expect("the figures are committed")
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    committed.retain(|n| !fresh.iter().any(|(f, _)| f == n));
+    stale.extend(
+        committed
+            .into_iter()
+            .map(|n| format!("{n} is not drawn any more")),
+    );
+    assert!(
+        stale.is_empty(),
+        "figures are stale ({}): regenerate them with `cargo run --release`",
+        stale.join(", ")
+    );
+}
+
+#[test]
+fn a_failed_write_leaves_the_previous_report_intact() {
+    let dir = std::env::temp_dir().join(format!("stepladder-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("REPORT.md");
+    write_atomically(&path, "old").unwrap();
+    // a directory where the temporary file would go makes the write fail
+    let blocker = dir.join(format!(".REPORT.md.tmp-{}", std::process::id()));
+    std::fs::create_dir_all(&blocker).unwrap();
+    assert!(write_atomically(&path, "new").is_err());
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+    std::fs::remove_dir_all(&blocker).unwrap();
+    write_atomically(&path, "new").unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
