@@ -13,16 +13,16 @@
 //! Each guard returns the study's record, so a test can also pin it with
 //! insta in its own snapshot folder.
 
-use crate::measure::Verdict;
-use crate::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
-use crate::measure::accuracy::pin::{PinOutcome, check_pin};
-use crate::measure::adaptive::{ToleranceLadderRecord, ToleranceLadderSpec, tolerance_ladder};
-use crate::measure::cost::evaluations::{EvaluationRecord, counting_step, evaluations};
-use crate::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
-use crate::measure::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
-use crate::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
+use crate::study::Verdict;
+use crate::study::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use crate::study::accuracy::pin::{PinOutcome, check_pin};
+use crate::study::adaptive::{ToleranceLadderRecord, ToleranceLadderSpec, tolerance_ladder};
+use crate::study::cost::evaluations::{EvaluationRecord, counting_step, evaluations};
+use crate::study::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
+use crate::study::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
+use crate::study::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
 
 /// Measures the global order with the automatic ladder; panics unless it
 /// agrees with `scheme.meta().order`.
@@ -89,7 +89,7 @@ pub fn assert_evaluations<M: Scheme, S: Scene<D>, const D: usize>(
 }
 
 /// Runs the tolerance ladder of an adaptive integrator (see
-/// [`crate::measure::adaptive::tolerance_ladder`]): the global error must
+/// [`crate::study::tolerance_ladder()`]): the global error must
 /// follow the tolerance with the exponent its controller's theory predicts,
 /// the accepted steps grow no faster than that controller allows, what it
 /// reports it spent equal the calls counted on its force callback, and
@@ -97,7 +97,7 @@ pub fn assert_evaluations<M: Scheme, S: Scene<D>, const D: usize>(
 /// Panics with the figures unless every claim holds.
 pub fn assert_adaptive<I, S, const D: usize>(integrator: &I, scene: &S) -> ToleranceLadderRecord
 where
-    I: crate::measure::adaptive::AdaptiveIntegrator,
+    I: crate::study::adaptive::AdaptiveIntegrator,
     S: Scene<D>,
 {
     let record = adaptive_ladder(integrator, scene);
@@ -120,7 +120,7 @@ where
 /// factor not stated, evaluations not reported) holds.
 pub fn assert_adaptive_claim(
     record: &ToleranceLadderRecord,
-    claim: crate::measure::adaptive::AdaptiveClaim,
+    claim: crate::study::adaptive::AdaptiveClaim,
 ) {
     let Some(judged) = record.claim(claim) else {
         return;
@@ -138,11 +138,11 @@ pub fn assert_adaptive_claim(
     }
 }
 
-/// The tolerance ladder [`assert_adaptive`] and [`guard_adaptive!`] judge,
+/// The tolerance ladder [`assert_adaptive`] and [`guard_adaptive!`](crate::guard_adaptive!) judge,
 /// with the default spec; panics if it cannot run.
 pub fn adaptive_ladder<I, S, const D: usize>(integrator: &I, scene: &S) -> ToleranceLadderRecord
 where
-    I: crate::measure::adaptive::AdaptiveIntegrator,
+    I: crate::study::adaptive::AdaptiveIntegrator,
     S: Scene<D>,
 {
     study(tolerance_ladder(
@@ -170,24 +170,24 @@ fn ladder_points(record: &ToleranceLadderRecord) -> String {
 }
 
 /// Checks an adaptive integrator's error at its pinned tolerance against
-/// the pin in `dir` (see [`crate::measure::adaptive::pin`]), writing it if
+/// the pin in `dir` (see [`crate::study::adaptive::pin`]), writing it if
 /// it is missing; panics if the error moved by more than the pin allows.
 pub fn assert_adaptive_pinned<I, S, const D: usize>(
     integrator: &I,
     scene: &S,
     record: &ToleranceLadderRecord,
     dir: impl AsRef<std::path::Path>,
-) -> crate::measure::adaptive::AdaptivePinOutcome
+) -> crate::study::adaptive::AdaptivePinOutcome
 where
-    I: crate::measure::adaptive::AdaptiveIntegrator,
+    I: crate::study::adaptive::AdaptiveIntegrator,
     S: Scene<D>,
 {
-    crate::measure::adaptive::check_adaptive_pin(integrator, scene, record, dir.as_ref())
+    crate::study::adaptive::check_adaptive_pin(integrator, scene, record, dir.as_ref())
         .unwrap_or_else(|message| panic!("{message}"))
 }
 
 /// Checks the error at the pinned step against the pin in `dir` (see
-/// [`crate::measure::accuracy::pin`]), writing the pin if it is missing;
+/// [`crate::study::accuracy::pin`]), writing the pin if it is missing;
 /// panics if the error moved by more than the pin's tolerance (four times
 /// the round-off the order study measured on that run, so a changed scheme
 /// fails and a reordering of its operations or another platform does not),
@@ -230,7 +230,7 @@ fn study<T>(result: Result<T, crate::error::Error>) -> T {
 
 /// The failure message of an order record, or `None` if it passed.
 pub fn order_failure(r: &OrderRecord) -> Option<String> {
-    use crate::measure::wording::{figure, order};
+    use crate::study::wording::{figure, order};
     (r.verdict != Verdict::Pass).then(|| {
         let ladder = match (r.rungs.first(), r.rungs.last()) {
             (Some(a), Some(b)) => {
@@ -258,8 +258,8 @@ pub fn order_failure(r: &OrderRecord) -> Option<String> {
 /// largest residual beside the error at the coarsest and the finest rungs
 /// measured, so that a floor set by the solve's own tolerance shows where
 /// it comes from. Empty for a scheme that reports none.
-fn solves_beside_errors(rungs: &[crate::measure::accuracy::rung::Rung]) -> String {
-    use crate::measure::wording::figure;
+fn solves_beside_errors(rungs: &[crate::study::accuracy::rung::Rung]) -> String {
+    use crate::study::wording::figure;
     let reported: Vec<(f64, f64, crate::scheme::SolveTally)> = rungs
         .iter()
         .filter_map(|g| Some((g.h, g.error.or(g.half_step_difference)?, g.solve?)))
@@ -304,7 +304,7 @@ pub fn reverse_failure(r: &ReverseRecord) -> Option<String> {
             r.claimed,
             r.verdict.name(),
             r.steps,
-            crate::measure::wording::figure(r.h),
+            crate::study::wording::figure(r.h),
             r.reason
         )
     })
@@ -320,7 +320,7 @@ pub fn energy_failure(r: &EnergyRecord) -> Option<String> {
             r.expected.name(),
             r.verdict.name(),
             r.steps,
-            crate::measure::wording::figure(r.h),
+            crate::study::wording::figure(r.h),
             r.reason
         )
     })
@@ -429,7 +429,7 @@ macro_rules! guard_claims {
 /// three (`dprkn6::kepler_eccentric::exponent`), as [`guard_claims!`] does
 /// for a fixed-step scheme: `exponent` (the global error follows
 /// `TOL^(p/(q+1))`), `error_factor` (within the stated factor of the
-/// tolerance, where one is stated with [`crate::measure::adaptive::AdaptiveClaims::within`]),
+/// tolerance, where one is stated with [`crate::study::adaptive::AdaptiveClaims::within`]),
 /// `cost` (the accepted steps grow no faster than the controller allows),
 /// `evaluations` (what it reports it spent equals the calls counted),
 /// `energy` and `round_trip` (against the geometric claims) and `pinned`
@@ -439,7 +439,7 @@ macro_rules! guard_claims {
 ///
 /// ```
 /// # mod doc {
-/// use stepladder::measure::adaptive::DPRKN6_ADAPTIVE;
+/// use stepladder::study::adaptive::DPRKN6_ADAPTIVE;
 /// use stepladder::scene::KeplerEccentric;
 ///
 /// stepladder::guard_adaptive! {
@@ -458,11 +458,11 @@ macro_rules! guard_adaptive {
                     mod $scene_module {
                         #[allow(unused_imports)]
                         use super::*;
-                        use $crate::measure::adaptive::AdaptiveClaim;
+                        use $crate::study::adaptive::AdaptiveClaim;
 
-                        fn ladder() -> &'static $crate::measure::adaptive::ToleranceLadderRecord {
+                        fn ladder() -> &'static $crate::study::adaptive::ToleranceLadderRecord {
                             static LADDER: ::std::sync::OnceLock<
-                                $crate::measure::adaptive::ToleranceLadderRecord,
+                                $crate::study::adaptive::ToleranceLadderRecord,
                             > = ::std::sync::OnceLock::new();
                             LADDER.get_or_init(|| $crate::guard::adaptive_ladder(&$integrator, &$scene))
                         }

@@ -1,67 +1,97 @@
 //! # stepladder
 //!
 //! Tells, in one `cargo test`, whether a time integrator for Newton's
-//! equations `q'' = a(q)` is as accurate as it claims, by running it over a
-//! ladder of step sizes against scenes with exact solutions.
+//! equations `q'' = a(q)` is as accurate, as stable and as geometric as it
+//! claims, by running it over a ladder of step sizes `h, h/2, h/4, ...` on
+//! scenes with exact solutions.
 //!
-//! - [`scheme`]: the catalogue (explicit Euler, Euler-Cromer, Störmer-Verlet,
-//!   leap-frog, velocity and position Verlet, the implicit midpoint rule,
-//!   RK4, PEFRL and the Forest-Ruth, Yoshida and Kahan-Li compositions),
-//!   compensated-summation variants of the Verlet forms
-//!   ([`scheme::compensated`]), and the [`scheme::Scheme`] trait to bring
-//!   your own.
-//! - [`scene`]: the harmonic oscillator, the circular Earth-Sun orbit, an
-//!   eccentric Kepler orbit and the anharmonic well (trapped orbits in Jacobi
-//!   elliptic functions, and its separatrix), with exact solutions; the
-//!   [`scene::Scene`] trait to bring your own.
-//! - [`measure`]: the studies; [`measure::accuracy::order::global_order`] measures the
-//!   global order with a 95% interval over an automatically chosen window;
-//!   [`measure::roundoff::floor`] and [`measure::roundoff::longrun`] the round-off floors and
-//!   the growth of round-off over long runs;
-//!   [`measure::hard`] the hard cases: orders and energy on eccentric Kepler
-//!   orbits, how long a scheme follows the anharmonic well's separatrix, and
-//!   whether it tells an orbit just below the barrier from one just above;
-//!   [`measure::cost`] speed against error, the force evaluations and the time
-//!   each scheme needs to reach target errors, and the time of a step against
-//!   a hand-written floor.
-//! - [`guard`]: one-line assertions of a scheme's claims for a downstream
-//!   crate's tests, with the deciding figures in the failure message, and
-//!   [`guard_claims!`], one `#[test]` per claim; [`measure::accuracy::pin`] pins the error
-//!   at a coarse step, to its round-off, in the crate's own snapshot folder.
-//! - [`scheme::BlackBox`] guards an integrator that only runs on `f64` or
-//!   `f32` (a step function on slices, from any crate);
-//!   [`scene::FromPotential`] makes a scene from a potential alone.
-//! - `report`, `suite` and `cli` (features `report` and `cli`, on by
-//!   default): the whole catalogue's studies, REPORT.md and its figures, and
-//!   the `stepladder` command. With `default-features = false` the crate is
-//!   the measurement core alone, on nalgebra, num-dual, statrs, serde and
-//!   thiserror.
+//! One import guards an integrator:
 //!
 //! ```
-//! use stepladder::measure::accuracy::order::{global_order, OrderSpec};
-//! use stepladder::scene::KeplerCircular;
-//! use stepladder::scheme::Leapfrog;
+//! use stepladder::prelude::*;
 //!
+//! // the global order with its 95% interval, against the claimed 2
 //! let record = global_order(&Leapfrog, &KeplerCircular, &OrderSpec::default())?;
 //! assert!(record.passed(), "{}", record.reason);
 //! let [lo, hi] = record.ci95.unwrap();
 //! assert!(lo <= 2.0 && 2.0 <= hi);
-//! # Ok::<(), stepladder::error::Error>(())
+//!
+//! // or every claim at once, panicking with the deciding figures
+//! assert_claims(&VELOCITY_VERLET, &Harmonic::default());
+//! # Ok::<(), Error>(())
 //! ```
+//!
+//! - [`scheme`]: the catalogue below, the [`Scheme`](scheme::Scheme) trait
+//!   and [`SchemeMeta`](scheme::SchemeMeta) to bring your own, and
+//!   [`BlackBox`](scheme::BlackBox) for an integrator from any crate (a step
+//!   function on `f64` or `f32` slices, first-order, canonical or on its own
+//!   vectors, stateful or implicit);
+//! - [`scene`]: the harmonic oscillator, the circular and eccentric Kepler
+//!   orbits, the anharmonic well and its separatrix, N-body scenes, each with
+//!   its exact or reference solution, and [`Scene`](scene::Scene) and
+//!   [`FromPotential`](scene::FromPotential) to bring your own;
+//! - [`study`]: one function per question (global order, energy drift,
+//!   symplecticity, reversibility, stability, round-off, force evaluations,
+//!   the hard cases, adaptive integrators over a tolerance ladder), each
+//!   with its spec and its record;
+//! - [`guard`]: one-line assertions of a scheme's claims for a test, with the
+//!   deciding figures in the failure message; [`guard_claims!`] and
+//!   [`guard_adaptive!`] write one `#[test]` per claim, with a pinned error;
+//! - [`prelude`]: all of the above that a test needs, in one `use`.
+//!
+//! The catalogue (claimed global order; every scheme here is measured
+//! against its claim on every scene):
+//!
+//! | id | order | family |
+//! |---|---|---|
+//! | `euler` | 1 | explicit Euler |
+//! | `euler-cromer` | 1 | splitting (symplectic Euler) |
+//! | `stormer-verlet` | 2 | two-step Störmer-Verlet, positions only |
+//! | `leapfrog` | 2 | leap-frog, half-step velocities |
+//! | `velocity-verlet` | 2 | splitting |
+//! | `position-verlet` | 2 | splitting |
+//! | `implicit-midpoint` | 2 | implicit Runge-Kutta |
+//! | `rk4` | 4 | Runge-Kutta |
+//! | `forest-ruth` | 4 | composition of velocity Verlet |
+//! | `pefrl` | 4 | splitting |
+//! | `yoshida6` | 6 | composition of velocity Verlet |
+//! | `kahan-li8` | 8 | composition of velocity Verlet |
+//! | `mclachlan-atela4` | 4 | Nyström splitting |
+//! | `mclachlan-sb3a4` | 4 | splitting |
+//! | `mclachlan-sb3a5` | 4 | splitting |
+//! | `blanes-moan-srkn11b` | 6 | Nyström splitting |
+//! | `rkn4-nystrom` | 4 | Runge-Kutta-Nyström |
+//! | `rkn6-dormand-prince` | 6 | Runge-Kutta-Nyström |
+//!
+//! Beside it: compensated-summation Verlet forms, Quinlan and Tremaine's
+//! eighth-order multistep method, the DPRKN8 method and the adaptive
+//! DPRKN6(4) and DPRKN8(6) pairs.
 #![warn(missing_docs)]
+
+pub mod error;
+pub mod guard;
+pub mod prelude;
+pub mod scene;
+pub mod scheme;
+pub mod state;
+pub mod study;
 
 /// The nalgebra version stepladder is built on, for writing generic schemes
 /// and scenes against the same vector types.
 pub use nalgebra;
-pub mod error;
-pub mod guard;
+
+// The floors under the studies and the machinery that runs them: public only
+// so that the lab (corpus, suites, report) and the harness tests can reach
+// them, and not part of the API.
+#[doc(hidden)]
 pub mod ladder;
-pub mod measure;
+#[doc(hidden)]
+pub mod maths;
+#[doc(hidden)]
 pub mod parallel;
+#[doc(hidden)]
 pub mod run;
-pub mod scene;
-pub mod scheme;
-pub mod state;
+#[doc(hidden)]
 pub mod tolerance;
 
 /// The README's examples, compiled and run as doctests.

@@ -27,7 +27,7 @@ pub const ORDER_TOLERANCE: f64 = 0.1;
 pub const STALL_ORDER: f64 = 0.5;
 
 /// Fewest rungs an order fit may use. The fit has four coefficients (see
-/// [`crate::measure::accuracy::fit`]); six rungs leave two degrees of freedom for the
+/// [`crate::maths::fit`]); six rungs leave two degrees of freedom for the
 /// interval, and a window shorter than that says too little to trust.
 pub const MIN_WINDOW: usize = 6;
 
@@ -154,7 +154,7 @@ pub fn order_verdict(
     measured: f64,
     interval: [f64; 2],
 ) -> Result<Option<String>, String> {
-    use crate::measure::wording::{order, vs_lower};
+    use crate::study::wording::{order, vs_lower};
     let estimate = format!(
         "measured order {} in [{}, {}]",
         order(measured),
@@ -321,7 +321,7 @@ pub const GROWTH_VALUE_RESOLUTION: f64 = 64.0;
 /// which changes by far more than this across a factor 2 above it.
 pub const GROWTH_POWER_TOLERANCE: f64 = 0.25;
 
-// Round-off studies (`measure::roundoff::floor`, `measure::roundoff::longrun`).
+// Round-off studies (`study::round_off::floor`, `study::round_off::longrun`).
 
 /// The round-off component of a plain scheme's error is fitted against the
 /// step over rungs of at least this many steps: a random walk of fewer
@@ -342,7 +342,7 @@ pub const ROUND_OFF_PAST_FLOOR: usize = 2;
 /// that performs a random walk (the root mean square over the long runs' 16
 /// realisations, over two decades of time). The exponent of a true random
 /// walk is itself random: simulated ensembles of unbiased walks, sampled and
-/// fitted exactly like the long runs (`measure::roundoff::longrun`'s tests), give
+/// fitted exactly like the long runs (`study::round_off::longrun`'s tests), give
 /// exponents with mean 1/2 and standard deviation near 0.06, and 200 of them
 /// stay within 0.19 of 1/2. A quarter is four standard deviations, and the
 /// boundary of the energy study's random-walk class on either side; a bias

@@ -5,31 +5,7 @@
 //! solver noise far above the round-off the error bound models. Correct
 //! claims must pass, a false symplecticity claim must fail.
 
-use stepladder::measure::Verdict;
-use stepladder::measure::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::measure::geometry::symplectic::{SymplecticSpec, symplecticity};
-use stepladder::scene::{Anharmonic, Harmonic, KeplerCircular, KeplerEccentric, Scene};
-use stepladder::scheme::{BlackBox, Force, Scheme, SchemeMeta, Solve};
-
-const fn claims(
-    id: &'static str,
-    order: u32,
-    symplectic: bool,
-    symmetric: bool,
-    evaluations: u32,
-) -> SchemeMeta {
-    SchemeMeta {
-        id,
-        name: id,
-        order,
-        symplectic,
-        symmetric,
-        force_evaluations: evaluations,
-        implicit: false,
-        reference: "adversarial black box",
-        phase_error: None,
-    }
-}
+use stepladder::prelude::*;
 
 fn velocity_verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
     let n = q.len();
@@ -118,13 +94,25 @@ fn correct_claims_pass_on_scenes_the_bound_was_not_designed_around() {
     let e9 = KeplerEccentric::new(0.9).unwrap();
     let well = Anharmonic::default();
     let pass = (Verdict::Pass, Verdict::Pass);
-    let verlet = BlackBox::new(claims("bb-verlet", 2, true, true, 2), velocity_verlet);
+    let verlet = BlackBox::new(
+        SchemeMeta::new("bb-verlet", "bb-verlet", 2)
+            .symplectic()
+            .symmetric()
+            .force_evaluations(2),
+        velocity_verlet,
+    );
     assert_eq!(geometry(&verlet, &e9), pass);
-    let cromer = BlackBox::new(claims("bb-euler-cromer", 1, true, false, 1), euler_cromer);
+    let cromer = BlackBox::new(
+        SchemeMeta::new("bb-euler-cromer", "bb-euler-cromer", 1).symplectic(),
+        euler_cromer,
+    );
     assert_eq!(geometry(&cromer, &e9), pass);
     assert_eq!(geometry(&cromer, &well), pass);
     let midpoint = BlackBox::new(
-        claims("bb-loose-midpoint", 2, true, true, 2),
+        SchemeMeta::new("bb-loose-midpoint", "bb-loose-midpoint", 2)
+            .symplectic()
+            .symmetric()
+            .force_evaluations(2),
         loose_midpoint,
     );
     for verdicts in [
@@ -139,7 +127,12 @@ fn correct_claims_pass_on_scenes_the_bound_was_not_designed_around() {
 #[test]
 fn a_false_symplecticity_claim_fails_on_the_eccentric_orbit() {
     let e9 = KeplerEccentric::new(0.9).unwrap();
-    let liar = BlackBox::new(claims("bb-rk4-liar", 4, true, false, 4), rk4);
+    let liar = BlackBox::new(
+        SchemeMeta::new("bb-rk4-liar", "bb-rk4-liar", 4)
+            .symplectic()
+            .force_evaluations(4),
+        rk4,
+    );
     let record = symplecticity(&liar, &e9, &SymplecticSpec::default()).unwrap();
     assert_eq!(record.verdict, Verdict::Fail, "{}", record.reason);
     // the defect stands far above the finite differences' bound
@@ -176,8 +169,9 @@ fn first_same_as_last(
 
 #[test]
 fn a_stateful_step_needs_its_reset_and_gets_it() {
-    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
-    let claims = claims("bb-fsal-verlet", 2, true, true, 1);
+    let meta = SchemeMeta::new("bb-fsal-verlet", "bb-fsal-verlet", 2)
+        .symplectic()
+        .symmetric();
     let scene = KeplerEccentric::default();
     // Kept in the closure, as a wrapper without a reset must keep it: every
     // run but the first starts with a force from another run's end (the
@@ -185,7 +179,7 @@ fn a_stateful_step_needs_its_reset_and_gets_it() {
     // an O(h) error in the first kick, so the global error is O(h).
     let kept = std::sync::Mutex::new(Vec::new());
     let never_reset = BlackBox::new(
-        claims,
+        meta,
         |q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
             first_same_as_last(&mut kept.lock().unwrap(), q, v, h, force)
         },
@@ -198,7 +192,7 @@ fn a_stateful_step_needs_its_reset_and_gets_it() {
         wrong.reason
     );
     // The same step with its state in the carry, fresh at every run.
-    let stateful = BlackBox::stateful(claims, Vec::new, first_same_as_last);
+    let stateful = BlackBox::stateful(meta, Vec::new, first_same_as_last);
     let right = global_order(&stateful, &scene, &OrderSpec::default()).unwrap();
     assert_eq!(right.verdict, Verdict::Pass, "{}", right.reason);
     assert_eq!(
@@ -242,13 +236,6 @@ fn midpoint_solve(
     solve
 }
 
-const fn implicit_claims(id: &'static str) -> SchemeMeta {
-    SchemeMeta {
-        implicit: true,
-        ..claims(id, 2, true, true, 1)
-    }
-}
-
 /// Solved to round-off (a sweep changes the midpoint velocity by at most 4
 /// ulps): the rule itself.
 fn tight_midpoint(_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) -> Solve {
@@ -257,10 +244,15 @@ fn tight_midpoint(_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Forc
 
 #[test]
 fn an_implicit_black_box_is_charged_what_its_solves_report() {
-    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
-    use stepladder::measure::cost::evaluations::evaluations;
     let scene = Harmonic::default();
-    let midpoint = BlackBox::implicit(implicit_claims("bb-midpoint"), || (), tight_midpoint);
+    let midpoint = BlackBox::implicit(
+        SchemeMeta::new("bb-midpoint", "bb-midpoint", 2)
+            .symplectic()
+            .symmetric()
+            .implicit(),
+        || (),
+        tight_midpoint,
+    );
     assert!(midpoint.meta().implicit);
     // one call an iteration, as reported: counted and reported agree
     let r = evaluations(&midpoint, &scene, 0.01);
@@ -280,7 +272,10 @@ fn an_implicit_black_box_is_charged_what_its_solves_report() {
     // a step that calls the force once more than its iterations (an
     // acceleration for output, say) spends more than its report says
     let extra = BlackBox::implicit(
-        implicit_claims("bb-midpoint-extra-call"),
+        SchemeMeta::new("bb-midpoint-extra-call", "bb-midpoint-extra-call", 2)
+            .symplectic()
+            .symmetric()
+            .implicit(),
         || (),
         |_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
             let solve = tight_midpoint(&mut (), q, v, h, force);
@@ -291,7 +286,10 @@ fn an_implicit_black_box_is_charged_what_its_solves_report() {
     // a stateful step that claims to be implicit but reports nothing: the
     // count is shown, not judged, and no rung carries a tally
     let silent = BlackBox::stateful(
-        implicit_claims("bb-midpoint-silent"),
+        SchemeMeta::new("bb-midpoint-silent", "bb-midpoint-silent", 2)
+            .symplectic()
+            .symmetric()
+            .implicit(),
         || (),
         |_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
             tight_midpoint(&mut (), q, v, h, force);
@@ -320,14 +318,16 @@ fn an_implicit_black_box_is_charged_what_its_solves_report() {
 
 #[test]
 fn a_solve_stopped_at_a_fixed_tolerance_shows_its_residual_beside_the_error() {
-    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
     // Relaxed by 1/2, the iteration contracts by about 1/2 a sweep whatever
     // the step, so stopping at a change of 1e-7 leaves the midpoint velocity
     // about 1e-7 off and the velocity 2e-7 off in every step: an error that
     // no step size removes and that adds up over the N = t_end / h steps.
     // The error cannot fall like h^2 to round-off: order 2 must not pass.
     let loose = BlackBox::implicit(
-        implicit_claims("bb-midpoint-1e-7"),
+        SchemeMeta::new("bb-midpoint-1e-7", "bb-midpoint-1e-7", 2)
+            .symplectic()
+            .symmetric()
+            .implicit(),
         || (),
         |_: &mut (), q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
             midpoint_solve(1e-7, 0.5, q, v, h, force)

@@ -5,7 +5,7 @@
 use nalgebra::SVector;
 use std::cell::Cell;
 use std::ops::ControlFlow;
-use stepladder::measure::adaptive::{Advance, RunEnd};
+use stepladder::study::adaptive::{Advance, RunEnd};
 use stepladder::scheme::Force;
 
 /// The scene dimensions the glue instantiates its fixed-size types for

@@ -13,15 +13,15 @@ pub mod methods;
 pub mod report;
 
 use stepladder::guard;
-use stepladder::measure::Verdict;
-use stepladder::measure::accuracy::order::{OrderSpec, global_order};
-use stepladder::measure::adaptive::{
+use stepladder::study::Verdict;
+use stepladder::study::accuracy::order::{OrderSpec, global_order};
+use stepladder::study::adaptive::{
     AdaptiveClaims, AdaptiveIntegrator, ToleranceLadderSpec, tolerance_ladder,
 };
-use stepladder::measure::cost::evaluations::{counting_step, evaluations};
-use stepladder::measure::geometry::energy::{EnergySpec, energy_drift};
-use stepladder::measure::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::measure::geometry::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::study::cost::evaluations::{counting_step, evaluations};
+use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::study::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
 use stepladder::scene::{Harmonic, KeplerEccentric, Scene};
 use stepladder::scheme::Scheme;
 
@@ -213,7 +213,7 @@ fn adaptive_row<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     let (evals, accepted) = r
         .points
         .iter()
-        .filter(|p| p.end == stepladder::measure::adaptive::RunEnd::Reached)
+        .filter(|p| p.end == stepladder::study::adaptive::RunEnd::Reached)
         .fold((0u64, 0u64), |(e, a), p| {
             (e + p.evaluations, a + p.accepted)
         });
@@ -223,12 +223,12 @@ fn adaptive_row<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     let loosest = r
         .points
         .iter()
-        .position(|p| p.end == stepladder::measure::adaptive::RunEnd::Reached && p.accepted > 0);
+        .position(|p| p.end == stepladder::study::adaptive::RunEnd::Reached && p.accepted > 0);
     let (step_exponent, step_exponent_is_bound) = match loosest {
         Some(i) if i + 1 < r.points.len() && r.points[i + 1].accepted > 0 => {
             let (a, b) = (&r.points[i], &r.points[i + 1]);
             let s = (b.accepted as f64 / a.accepted as f64).ln() / (a.tolerance / b.tolerance).ln();
-            let bound = b.end != stepladder::measure::adaptive::RunEnd::Reached;
+            let bound = b.end != stepladder::study::adaptive::RunEnd::Reached;
             // a bound is only evidence of growth, never of its absence
             (Some(s), bound)
         }
@@ -245,7 +245,7 @@ fn adaptive_row<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         unfinished: r
             .points
             .iter()
-            .filter(|p| p.end != stepladder::measure::adaptive::RunEnd::Reached)
+            .filter(|p| p.end != stepladder::study::adaptive::RunEnd::Reached)
             .count(),
         verdict: r.verdict,
         reason: r.reason,

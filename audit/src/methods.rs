@@ -13,8 +13,8 @@ use crate::{
 use differential_equations::methods::SymplecticIntegrator;
 use differential_equations::prelude::ExplicitRungeKutta;
 use peroxide::fuga::{DP45, GL4, ImplicitSolver, RALS3, RALS4, RK4, RK5, TSIT45};
-use stepladder::measure::Verdict::{Fail, Inconclusive, Pass};
-use stepladder::measure::adaptive::{AdaptiveBlackBox, AdaptiveClaims};
+use stepladder::study::Verdict::{Fail, Inconclusive, Pass};
+use stepladder::study::adaptive::{AdaptiveBlackBox, AdaptiveClaims};
 use stepladder::scheme::{BlackBox, SchemeMeta};
 
 /// Claims of a fixed-step method.
@@ -54,7 +54,7 @@ const fn holds(why: &'static str) -> FixedExpectation {
 /// Every claim expected to hold on both scenes except those named `Fail`
 /// in `verdicts` (order, symplectic, reversible, energy, evaluations).
 const fn except(
-    verdicts: [stepladder::measure::Verdict; 5],
+    verdicts: [stepladder::study::Verdict; 5],
     why: &'static str,
     evidence: &'static [&'static str],
 ) -> FixedExpectation {

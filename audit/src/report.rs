@@ -3,7 +3,7 @@
 
 use crate::{Audit, disagreements};
 use std::fmt::Write;
-use stepladder::measure::Verdict;
+use stepladder::study::Verdict;
 
 /// Defects the audit's autonomous scenes cannot see, with the independent
 /// confirmation that found them.

@@ -20,30 +20,19 @@ use differential_equations::ode::OrdinaryNumericalMethod;
 use differential_equations::prelude::{HamiltonianSystem, ODE, Status};
 use ode_solvers::dop_shared::FloatNumber;
 use ode_solvers::{Dop853, Dopri5, OutputType, Rk4, System};
-use stepladder::measure::adaptive::{AdaptiveBlackBox, AdaptiveClaims, Advance, AdvanceFn, RunEnd};
-use stepladder::nalgebra::{SVector, Vector1};
-use stepladder::scene::{
-    FromPotential, Harmonic, KeplerCircular, KeplerEccentric, Potential, Scene, SceneMeta,
-};
-use stepladder::scheme::{
-    BlackBox, BlackBoxStep, Float, Force, Hamiltonian, OneStep, Rhs, SchemeMeta, StepFailure,
-    VectorForce,
-};
-use stepladder::state::{Real, State};
+use stepladder::prelude::*;
 use utsuroi::{DynamicalSystem, StormerVerlet, Yoshida4};
 
-/// Claims shared by the tables below.
+/// Claims shared by the tables below: explicit methods whose symplectic
+/// ones are also symmetric.
 const fn claims(id: &'static str, order: u32, symplectic: bool, evaluations: u32) -> SchemeMeta {
-    SchemeMeta {
-        id,
-        name: id,
-        order,
-        symplectic,
-        symmetric: symplectic,
-        force_evaluations: evaluations,
-        implicit: false,
-        reference: "the downstream crate",
-        phase_error: None,
+    let meta = SchemeMeta::new(id, id, order)
+        .force_evaluations(evaluations)
+        .reference("the downstream crate");
+    if symplectic {
+        meta.symplectic().symmetric()
+    } else {
+        meta
     }
 }
 
@@ -433,7 +422,6 @@ stepladder::guard_claims! {
 /// Guards a broken variant must fail, named after the claim that catches it.
 mod caught {
     use super::*;
-    use stepladder::guard;
 
     /// `ode_solvers`' RK4 claimed symplectic: the finite-difference tangent
     /// map refutes it.
@@ -441,7 +429,7 @@ mod caught {
     #[should_panic(expected = "not symplectic, though claimed")]
     fn rk4_claimed_symplectic() {
         let liar = BlackBox::first_order(claims("rk4-liar", 4, true, 4), ode_solvers_rk4::<f64, 4>);
-        guard::assert_symplectic(&liar, &KeplerCircular);
+        assert_symplectic(&liar, &KeplerCircular);
     }
 
     /// The same in single precision, where the tangent map's error bound is
@@ -453,7 +441,7 @@ mod caught {
             claims("rk4-f32-liar", 4, true, 4),
             ode_solvers_rk4::<f32, 4>,
         );
-        guard::assert_symplectic(&liar, &KeplerCircular);
+        assert_symplectic(&liar, &KeplerCircular);
     }
 
     /// The engine's leap-frog with a full first kick (a classic slip): first
@@ -473,7 +461,7 @@ mod caught {
                 v[i] += 0.5 * h * a[i];
             }
         }
-        guard::assert_order(
+        assert_order(
             &BlackBox::new(claims("full-kick", 2, true, 2), full_kick),
             &KeplerCircular,
         );
@@ -506,7 +494,7 @@ mod caught {
                 v[i] = v0[i] + h / 6.0 * (0..4).map(|s| w[s] * k[s][2 + i]).sum::<f64>();
             }
         }
-        guard::assert_order(
+        assert_order(
             &BlackBox::new(claims("rk4-reordered", 4, false, 4), reordered),
             &KeplerCircular,
         );
@@ -519,7 +507,7 @@ mod caught {
     #[test]
     #[should_panic(expected = "7.00 force evaluations per step counted over 60 steps, 6 claimed")]
     fn dopri5_claimed_with_its_textbook_cost() {
-        guard::assert_evaluations(&differential_equations_dopri5(6), &KeplerCircular);
+        assert_evaluations(&differential_equations_dopri5(6), &KeplerCircular);
     }
 
     /// utsuroi's Störmer-Verlet claimed at the one evaluation a step of a
@@ -531,7 +519,7 @@ mod caught {
         let under = utsuroi::<2>(claims("sv-under", 2, true, 1), |system, s, h| {
             StormerVerlet.step(system, 0.0, s, h)
         });
-        guard::assert_evaluations(&under, &KeplerCircular);
+        assert_evaluations(&under, &KeplerCircular);
     }
 }
 
@@ -541,14 +529,12 @@ mod caught {
 /// study cannot decide; it must say so, never refute the claim.
 #[test]
 fn ode_solvers_dop853_on_the_eccentric_orbit_is_never_refuted() {
-    use stepladder::measure::Verdict;
-    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
     let dop853 = BlackBox::first_order(DOP853_CLAIMS, ode_solvers_dop853::<4>);
     let orbit = KeplerEccentric::new(0.6).unwrap();
     let record = global_order(&dop853, &orbit, &OrderSpec::default()).unwrap();
     assert_ne!(record.verdict, Verdict::Fail, "{}", record.reason);
-    stepladder::guard::assert_symplectic(&dop853, &orbit);
-    stepladder::guard::assert_energy(&dop853, &orbit);
+    assert_symplectic(&dop853, &orbit);
+    assert_energy(&dop853, &orbit);
 }
 
 /// The f32 RK4 of ode_solvers: a fourth-order method in single precision
@@ -557,16 +543,14 @@ fn ode_solvers_dop853_on_the_eccentric_orbit_is_never_refuted() {
 /// "inconclusive", never refute the claim.
 #[test]
 fn ode_solvers_rk4_in_f32_is_never_refuted() {
-    use stepladder::measure::Verdict;
-    use stepladder::measure::accuracy::order::{OrderSpec, global_order};
     let rk4_f32 = BlackBox::first_order(
         claims("ode-solvers-rk4-f32", 4, false, 4),
         ode_solvers_rk4::<f32, 4>,
     );
     let record = global_order(&rk4_f32, &KeplerCircular, &OrderSpec::default()).unwrap();
     assert_ne!(record.verdict, Verdict::Fail, "{}", record.reason);
-    stepladder::guard::assert_symplectic(&rk4_f32, &KeplerCircular);
-    stepladder::guard::assert_evaluations(&rk4_f32, &KeplerCircular);
+    assert_symplectic(&rk4_f32, &KeplerCircular);
+    assert_evaluations(&rk4_f32, &KeplerCircular);
 }
 
 // ode_solvers' DOPRI5 as users run it: adaptive, from t0 to t1 at a

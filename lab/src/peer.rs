@@ -13,7 +13,7 @@
 //!
 //! The peer runs through the same [`AdaptiveIntegrator`] trait as the
 //! crate's own adaptive pairs, so the tolerance ladder
-//! ([`stepladder::measure::adaptive::tolerance_ladder`]) judges both alike.
+//! ([`stepladder::study::tolerance_ladder()`]) judges both alike.
 
 use ode_solvers::dop_shared::IntegrationError;
 use ode_solvers::{Dop853, OutputType, SVector, System};
@@ -21,13 +21,13 @@ use serde::Serialize;
 use std::cell::Cell;
 use std::time::{Duration, Instant};
 use stepladder::error::Error;
-use stepladder::measure::adaptive::integrator::{
-    AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request,
-};
-use stepladder::measure::cost::work_points::{TargetCost, WorkPoint, targets_of};
-use stepladder::measure::geometry::energy::energy_norm;
 use stepladder::scene::Scene;
 use stepladder::state::State;
+use stepladder::study::adaptive::integrator::{
+    AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request,
+};
+use stepladder::study::cost::work_points::{TargetCost, WorkPoint, targets_of};
+use stepladder::study::geometry::energy::energy_norm;
 
 /// The peer's name in tables.
 pub const PEER_NAME: &str = "ode_solvers Dop853";
@@ -175,7 +175,7 @@ fn solve<S: Scene<D>, const D: usize, const N: usize>(
 /// with an estimate `h err5^2 / sqrt(err5^2 + 0.01 err3^2)` that behaves
 /// like `h^6` while the fifth-order difference dominates and like `h^8`
 /// once the third-order one does (see
-/// [`stepladder::measure::adaptive::tolerance_ladder`]): the exponent of its
+/// [`stepladder::study::tolerance_ladder()`]): the exponent of its
 /// global error against the tolerance moves from `4/3` towards 1 along the
 /// ladder, so no single value is predicted and it is measured only.
 #[derive(Clone, Copy, Debug, Default)]
@@ -365,7 +365,7 @@ pub fn peer_work<S: Scene<D>, const D: usize>(
     Some((work, times))
 }
 
-/// The evaluations to reach each of [`stepladder::measure::cost::work_points::TARGETS`] from the peer's points,
+/// The evaluations to reach each of [`stepladder::study::cost::work_points::TARGETS`] from the peer's points,
 /// loosest tolerance first.
 pub fn peer_targets(points: &[PeerPoint]) -> Vec<TargetCost> {
     let data: Vec<(f64, Option<f64>)> = points

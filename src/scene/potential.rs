@@ -154,7 +154,7 @@ fn dual_gradient<P: Potential<D>, const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::geometry::tangent::acceleration_jacobian;
+    use crate::maths::tangent::acceleration_jacobian;
     use crate::scene::KeplerEccentric;
     use std::f64::consts::PI;
 

@@ -8,7 +8,7 @@
 //! velocity as slices and a force callback, and read the result back. Every
 //! study works on it; the tangent map, which the generic schemes give exactly
 //! through dual numbers, is taken by finite differences with a bounded error
-//! (see [`crate::measure::geometry::tangent::tangent_map`]), and round-off
+//! (see [`crate::maths::tangent::tangent_map`]), and round-off
 //! floors and tolerances follow from the scalar's epsilon.
 //!
 //! ```
@@ -119,7 +119,7 @@ pub type StepFn<T> = fn(&mut [T], &mut [T], T, &Force<'_, T>);
 /// the integrator's own vector type).
 ///
 /// Every study counts the force calls a step makes and compares them with
-/// `force_evaluations` (see [`crate::measure::cost::evaluations`]).
+/// `force_evaluations` (see [`crate::study::cost::evaluations`]).
 pub struct BlackBox<T, F> {
     meta: SchemeMeta,
     step: F,
@@ -556,9 +556,9 @@ mod tests {
 
     #[test]
     fn the_other_studies_see_the_same_method_through_the_black_box() {
-        use crate::measure::accuracy::phase::phase_error;
-        use crate::measure::hard::eccentric::{OrderStatus, eccentric_order};
-        use crate::measure::stability::stability;
+        use crate::study::accuracy::phase::phase_error;
+        use crate::study::hard::eccentric::{OrderStatus, eccentric_order};
+        use crate::study::stability::stability;
         let mut meta = *VELOCITY_VERLET.meta();
         meta.force_evaluations = 2;
         meta.phase_error = crate::scheme::VERLET_PHASE;
@@ -575,7 +575,7 @@ mod tests {
         let phase = phase_error(&bb);
         assert_eq!(
             phase.verdict,
-            Some(crate::measure::Verdict::Pass),
+            Some(crate::study::Verdict::Pass),
             "{}",
             phase.reason
         );

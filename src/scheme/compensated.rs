@@ -23,8 +23,8 @@
 //! catalogue's studies use, their results are those of their plain twins to
 //! within round-off a million times below the truncation error, so they would
 //! add rows that differ only in digits the studies do not resolve. They are
-//! measured by the round-off studies ([`crate::measure::roundoff::floor`],
-//! [`crate::measure::roundoff::longrun`]), which is where they differ, and their order,
+//! measured by the round-off studies ([`crate::study::round_off::floor`],
+//! [`crate::study::round_off::longrun`]), which is where they differ, and their order,
 //! symplecticity and time symmetry are tested like any catalogue scheme's.
 
 use super::splitting::{Flow, SplittingTable, VELOCITY_VERLET};

@@ -96,6 +96,71 @@ pub const VERLET_PHASE: Option<PhaseError> = Some(PhaseError {
 });
 
 impl SchemeMeta {
+    /// The claims of an explicit scheme of global order `order` that makes
+    /// one force evaluation a step and claims no geometry; the builder
+    /// methods below add the rest, and every one is `const`, so a scheme's
+    /// metadata can be a `static`:
+    ///
+    /// ```
+    /// use stepladder::scheme::SchemeMeta;
+    ///
+    /// const META: SchemeMeta = SchemeMeta::new("my-verlet", "My velocity Verlet", 2)
+    ///     .symplectic()
+    ///     .symmetric()
+    ///     .reference("Swope, Andersen, Berens & Wilson, J. Chem. Phys. 76, 637 (1982)");
+    /// assert_eq!((META.order, META.force_evaluations, META.implicit), (2, 1, false));
+    /// assert!(META.symplectic && META.symmetric);
+    /// ```
+    pub const fn new(id: &'static str, name: &'static str, order: u32) -> Self {
+        SchemeMeta {
+            id,
+            name,
+            order,
+            symplectic: false,
+            symmetric: false,
+            force_evaluations: 1,
+            implicit: false,
+            reference: "",
+            phase_error: None,
+        }
+    }
+
+    /// Claims that the one-step map preserves the symplectic form.
+    pub const fn symplectic(mut self) -> Self {
+        self.symplectic = true;
+        self
+    }
+
+    /// Claims that stepping with `-h` undoes a step with `h`.
+    pub const fn symmetric(mut self) -> Self {
+        self.symmetric = true;
+        self
+    }
+
+    /// Claims `n` force evaluations a step (a solve's iteration, if implicit).
+    pub const fn force_evaluations(mut self, n: u32) -> Self {
+        self.force_evaluations = n;
+        self
+    }
+
+    /// Claims that the step solves an equation.
+    pub const fn implicit(mut self) -> Self {
+        self.implicit = true;
+        self
+    }
+
+    /// Where the scheme is published or derived.
+    pub const fn reference(mut self, reference: &'static str) -> Self {
+        self.reference = reference;
+        self
+    }
+
+    /// The leading relative phase error on the harmonic oscillator.
+    pub const fn phase_error(mut self, phase_error: PhaseError) -> Self {
+        self.phase_error = Some(phase_error);
+        self
+    }
+
     /// `force_evaluations` with its unit: "4" per step, or "1 per iteration"
     /// for an implicit scheme.
     pub fn forces_label(&self) -> String {

@@ -284,10 +284,10 @@ pub const QUINLAN_TREMAINE8: SymmetricMultistep<8> = SymmetricMultistep::new(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::accuracy::phase::{polynomial_roots, rotation_at};
-    use crate::measure::stability::{is_stable, stability};
     use crate::run::integrate;
     use crate::scene::Harmonic;
+    use crate::study::accuracy::phase::{polynomial_roots, rotation_at};
+    use crate::study::stability::{is_stable, stability};
 
     const SY8: SymmetricMultistep<8> = QUINLAN_TREMAINE8;
 

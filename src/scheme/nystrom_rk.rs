@@ -10,7 +10,7 @@
 //! methods is symplectic or symmetric: they are the non-geometric baseline
 //! of the high orders, and DPRKN6 and DPRKN8 carry embedded fourth- and
 //! sixth-order solutions for step-size control (see
-//! [`crate::measure::adaptive`]).
+//! [`crate::study::adaptive`]).
 
 use super::{Scheme, SchemeMeta, StepFailure, WithAcceleration};
 use crate::scene::Scene;

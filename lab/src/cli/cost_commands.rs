@@ -32,10 +32,10 @@ pub(super) struct RoundoffArgs {
 #[derive(Debug, Args)]
 pub(super) struct SpeedArgs {
     /// Timed runs per scheme; the fastest is kept.
-    #[arg(long, default_value_t = stepladder::measure::cost::step_time::SPEED_REPEATS)]
+    #[arg(long, default_value_t = stepladder::study::cost::step_time::SPEED_REPEATS)]
     repeats: usize,
     /// Steps per timed run.
-    #[arg(long, default_value_t = stepladder::measure::cost::step_time::SPEED_STEPS)]
+    #[arg(long, default_value_t = stepladder::study::cost::step_time::SPEED_STEPS)]
     steps: u64,
     /// Print the record as JSON.
     #[arg(long)]
@@ -74,7 +74,7 @@ pub(super) struct WorkArgs {
 }
 
 pub(super) fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {
-    use stepladder::measure::roundoff::floor::{RoundoffSpec, assemble, roundoff, study_pair};
+    use stepladder::study::round_off::floor::{RoundoffSpec, assemble, roundoff, study_pair};
     let scene = AnyScene::parse(&args.scene)?;
     let spec = RoundoffSpec {
         periods: args.periods,
@@ -118,7 +118,7 @@ pub(super) fn speed(args: &SpeedArgs) -> Result<ExitCode, Error> {
     }
     let runs = args.repeats as u64 * (stepladder::scheme::scheme_ids().len() as u64 + 1);
     stepladder::ladder::check_cost(args.steps.saturating_mul(runs))?;
-    let record = stepladder::measure::cost::step_time::speed(args.steps, args.repeats);
+    let record = stepladder::study::cost::step_time::speed(args.steps, args.repeats);
     if args.json {
         print_json(&record);
     } else {
@@ -128,7 +128,7 @@ pub(super) fn speed(args: &SpeedArgs) -> Result<ExitCode, Error> {
 }
 
 pub(super) fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
-    use stepladder::measure::roundoff::longrun::{LongrunSpec, longrun_of};
+    use stepladder::study::round_off::longrun::{LongrunSpec, longrun_of};
     let scene = AnyScene::parse(&args.scene)?;
     let spec = LongrunSpec { steps: args.steps };
     let ids = match &args.scheme {
@@ -138,8 +138,8 @@ pub(super) fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
     // refuse the whole request up front, not after some runs
     let per_scheme = args
         .steps
-        .unwrap_or(stepladder::measure::roundoff::longrun::DEFAULT_STEPS)
-        .saturating_mul(stepladder::measure::roundoff::longrun::RUNS as u64);
+        .unwrap_or(stepladder::study::round_off::longrun::DEFAULT_STEPS)
+        .saturating_mul(stepladder::study::round_off::longrun::RUNS as u64);
     stepladder::ladder::check_cost(per_scheme.saturating_mul(ids.len() as u64))?;
     let records = ids
         .into_iter()
@@ -160,7 +160,7 @@ struct WorkOutput {
     record: crate::suite::work_precision::WorkRecord,
     timing: crate::suite::work_precision::WorkTiming,
     /// The tolerance ladders of the adaptive integrators on the same scene.
-    adaptive: Vec<stepladder::measure::adaptive::ToleranceLadderRecord>,
+    adaptive: Vec<stepladder::study::adaptive::ToleranceLadderRecord>,
 }
 
 pub(super) fn work(args: &WorkArgs) -> Result<ExitCode, Error> {
@@ -182,7 +182,7 @@ pub(super) fn work(args: &WorkArgs) -> Result<ExitCode, Error> {
             crate::suite::adaptive::ladder_of(
                 i,
                 &scene,
-                &stepladder::measure::adaptive::ToleranceLadderSpec::default(),
+                &stepladder::study::adaptive::ToleranceLadderSpec::default(),
             )
         })
         .collect::<Result<Vec<_>, Error>>()?;

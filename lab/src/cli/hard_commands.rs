@@ -7,15 +7,15 @@ use clap::Args;
 use serde::Serialize;
 use std::process::ExitCode;
 use stepladder::error::Error;
-use stepladder::measure::hard::eccentric::{
-    ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, ORDER_SCHEMES, OrderStatus,
-    RoundOffRecord,
-};
-use stepladder::measure::hard::escape::{EscapeRecord, EscapeSpec};
-use stepladder::measure::hard::following::{FollowingRecord, WellSpec};
 use stepladder::parallel::default_threads;
 use stepladder::scene::{KeplerEccentric, Separatrix};
 use stepladder::scheme::scheme_ids;
+use stepladder::study::hard::eccentric::{
+    ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, ORDER_SCHEMES, OrderStatus,
+    RoundOffRecord,
+};
+use stepladder::study::hard::escape::{EscapeRecord, EscapeSpec};
+use stepladder::study::hard::following::{FollowingRecord, WellSpec};
 use stepladder::tolerance::ECCENTRIC_MAX_RUNG_STEPS;
 
 #[derive(Debug, Args)]

@@ -12,16 +12,16 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use stepladder::error::Error;
 use stepladder::ladder::{AUTO_START, Ladder, LadderChoice};
-use stepladder::measure::Verdict;
-use stepladder::measure::accuracy::order::{OrderRecord, OrderSpec};
-use stepladder::measure::case::case;
-use stepladder::measure::geometry::energy::EnergySpec;
-use stepladder::measure::geometry::reverse::ReverseSpec;
-use stepladder::measure::geometry::symplectic::SymplecticSpec;
-use stepladder::measure::stability::{StabilityRecord, stability};
 use stepladder::parallel::default_threads;
 use stepladder::scene::AnyScene;
 use stepladder::scheme::catalogue;
+use stepladder::study::Verdict;
+use stepladder::study::accuracy::order::{OrderRecord, OrderSpec};
+use stepladder::study::case::case;
+use stepladder::study::geometry::energy::EnergySpec;
+use stepladder::study::geometry::reverse::ReverseSpec;
+use stepladder::study::geometry::symplectic::SymplecticSpec;
+use stepladder::study::stability::{StabilityRecord, stability};
 
 mod cost_commands;
 mod hard_commands;
@@ -116,7 +116,7 @@ struct CaseArgs {
 }
 
 impl CaseArgs {
-    fn case(&self) -> Result<Box<dyn stepladder::measure::case::Case>, Error> {
+    fn case(&self) -> Result<Box<dyn stepladder::study::case::Case>, Error> {
         case(&self.scheme, &AnyScene::parse(&self.scene)?)
     }
 }

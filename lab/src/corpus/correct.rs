@@ -1187,7 +1187,7 @@ pub(crate) mod tests {
         let scene = Anharmonic::default();
         let s = State::new(Vector1::new(0.45), Vector1::new(0.2));
         let differences = step_jacobian(scheme, &scene, &s, h).determinant();
-        let dual = stepladder::measure::geometry::tangent::step_jacobian(scheme, &scene, &s, h)
+        let dual = stepladder::maths::tangent::step_jacobian(scheme, &scene, &s, h)
             .expect("step")
             .determinant();
         assert!(

@@ -386,10 +386,10 @@ impl Scene<1> for Morse {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use stepladder::measure::Verdict;
-    use stepladder::measure::accuracy::scene_check::check_scene;
     use stepladder::run::integrate;
     use stepladder::scheme::{KAHAN_LI8, VELOCITY_VERLET};
+    use stepladder::study::Verdict;
+    use stepladder::study::accuracy::scene_check::check_scene;
 
     #[test]
     fn every_scene_is_conservative_and_the_morse_solution_solves_it() {

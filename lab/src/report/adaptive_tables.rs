@@ -9,10 +9,10 @@ use crate::peer::PEER_NAME;
 use crate::suite::adaptive::AdaptiveRecords;
 use crate::suite::work_precision::WorkTiming;
 use std::fmt::Write as _;
-use stepladder::measure::adaptive::tolerance_ladder::{
+use stepladder::study::adaptive::ladder::{
     ENERGY_PERIODS, GEOMETRY_TOLERANCE, MIN_FIT_POINTS, ROUND_OFF_SHARE, ToleranceLadderRecord,
 };
-use stepladder::measure::cost::work_points::cost_to_reach;
+use stepladder::study::cost::work_points::cost_to_reach;
 use stepladder::tolerance::ERROR_CEILING;
 
 /// The tolerances whose costs the summary table shows.

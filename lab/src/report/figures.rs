@@ -11,10 +11,10 @@ use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use stepladder::error::Error;
-use stepladder::measure::accuracy::order::OrderRecord;
-use stepladder::measure::accuracy::trajectory::TrajectoryRecord;
-use stepladder::measure::geometry::energy::EnergyRecord;
-use stepladder::measure::stability::StabilityRecord;
+use stepladder::study::accuracy::order::OrderRecord;
+use stepladder::study::accuracy::trajectory::TrajectoryRecord;
+use stepladder::study::geometry::energy::EnergyRecord;
+use stepladder::study::stability::StabilityRecord;
 
 const SIZE: (u32, u32) = (900, 560);
 

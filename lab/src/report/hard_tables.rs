@@ -5,13 +5,13 @@
 use super::markdown::{Table, opt, sci};
 use crate::suite::hard_cases::{ESCAPE_DELTAS, HardCases, NAIVE_STEP};
 use std::fmt::Write as _;
-use stepladder::measure::hard::eccentric::{
+use stepladder::scheme::scheme_ids;
+use stepladder::study::hard::eccentric::{
     ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, KickLag, OrbitEnergy, OrderStatus,
     RoundOffRecord, kick_lag, short_ratio,
 };
-use stepladder::measure::hard::escape::{EscapeRecord, Misclassified};
-use stepladder::measure::hard::following::{Event, FollowingRecord, LineFit};
-use stepladder::scheme::scheme_ids;
+use stepladder::study::hard::escape::{EscapeRecord, Misclassified};
+use stepladder::study::hard::following::{Event, FollowingRecord, LineFit};
 use stepladder::tolerance;
 
 /// The whole section.
@@ -421,7 +421,7 @@ pub fn following_rungs(r: &FollowingRecord) -> String {
             match (g.used, g.dropped) {
                 (true, _) => "fitted".to_string(),
                 (false, Some(d)) => match d {
-                    stepladder::measure::accuracy::order::DropReason::AboveCeiling => {
+                    stepladder::study::accuracy::order::DropReason::AboveCeiling => {
                         "offset above the ceiling".to_string()
                     }
                     d => d.explain().to_string(),

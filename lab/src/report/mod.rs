@@ -25,13 +25,13 @@ use std::fmt::Write as _;
 use std::path::Path;
 use stepladder::error::Error;
 use stepladder::ladder::LadderChoice;
-use stepladder::measure::Verdict;
-use stepladder::measure::accuracy::order::OrderRecord;
-use stepladder::measure::accuracy::phase::PhaseRecord;
-use stepladder::measure::accuracy::scene_check::SceneCheck;
-use stepladder::measure::stability::{GROWTH_AT, GrowthSource, StabilityRecord};
 use stepladder::scene::AnyScene;
 use stepladder::scheme::catalogue;
+use stepladder::study::Verdict;
+use stepladder::study::accuracy::order::OrderRecord;
+use stepladder::study::accuracy::phase::PhaseRecord;
+use stepladder::study::accuracy::scene_check::SceneCheck;
+use stepladder::study::stability::{GROWTH_AT, GrowthSource, StabilityRecord};
 use stepladder::tolerance;
 
 /// The line that separates the deterministic report from the timings.
@@ -285,12 +285,12 @@ fn geometry_method() -> String {
          in coordinates `(q, v/w)`; symplectic when `max |J^T Omega J - Omega| <= {:e}`.\n\
          - **Reversibility.** {} steps of 1/100 period forward, then back with `-h`; the \
          return error in units of `eps * scale`, time-symmetric when within `16 N`.\n\n",
-        stepladder::measure::geometry::energy::DEFAULT_PERIODS,
-        (1.0 / stepladder::measure::geometry::energy::DEFAULT_STEP).round(),
+        stepladder::study::geometry::energy::DEFAULT_PERIODS,
+        (1.0 / stepladder::study::geometry::energy::DEFAULT_STEP).round(),
         tolerance::GROWTH_DECADES,
         tolerance::LOST_FRACTION,
         tolerance::SYMPLECTIC_TOLERANCE,
-        stepladder::measure::geometry::reverse::DEFAULT_STEPS,
+        stepladder::study::geometry::reverse::DEFAULT_STEPS,
     )
 }
 
@@ -495,7 +495,7 @@ fn growth_table(records: &[StabilityRecord]) -> String {
 
 /// The course notes' Earth-Sun runs: a table of where they end, and the
 /// relative energy error against time as a chart.
-pub fn earth_sun(runs: &[stepladder::measure::accuracy::trajectory::TrajectoryRecord]) -> String {
+pub fn earth_sun(runs: &[stepladder::study::accuracy::trajectory::TrajectoryRecord]) -> String {
     let mut out = String::from(
         "The course notes' two runs of the circular Earth-Sun orbit for ten years: explicit \
          Euler with `dt = 0.001` and velocity Verlet with `dt = 0.01`. Euler's energy grows \
@@ -626,7 +626,7 @@ fn method() -> String {
          (a straight line through smooth errors would turn them into bias); `p` with \
          Student's t 95% interval, widened by how far `p` moves when the window loses one or \
          two end rungs and by how far the local orders extrapolate from it.\n\n",
-        stepladder::measure::accuracy::order::COMPARISONS,
+        stepladder::study::accuracy::order::COMPARISONS,
         stepladder::ladder::AUTO_MAX_RUNG_EVALUATIONS,
         tolerance::ERROR_CEILING,
         tolerance::WINDOW_RUNGS,

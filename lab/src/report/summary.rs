@@ -6,9 +6,9 @@ use super::markdown::{Table, order};
 use crate::corpus::Confusion;
 use crate::suite::SuiteRecords;
 use std::fmt::Write as _;
-use stepladder::measure::Verdict;
 use stepladder::scene::scene_ids;
 use stepladder::scheme::catalogue;
+use stepladder::study::Verdict;
 
 /// The summary section.
 pub fn summary(records: &SuiteRecords) -> String {

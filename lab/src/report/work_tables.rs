@@ -6,9 +6,9 @@ use super::markdown::{Table, sci};
 use crate::peer::{PEER_NAME, PEER_TOLERANCES};
 use crate::suite::work_precision::{Cheapest, Fastest, WorkRecord, WorkTiming};
 use std::fmt::Write as _;
-use stepladder::measure::adaptive::ToleranceLadderRecord;
-use stepladder::measure::cost::step_time::SpeedRecord;
-use stepladder::measure::cost::work_points::{
+use stepladder::study::adaptive::ToleranceLadderRecord;
+use stepladder::study::cost::step_time::SpeedRecord;
+use stepladder::study::cost::work_points::{
     ENERGY_FLOOR_GUARD, ENERGY_MAX_STEPS, ENERGY_PERIODS, ENERGY_START, Reach, TARGETS, TargetCost,
 };
 

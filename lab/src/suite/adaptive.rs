@@ -6,12 +6,12 @@ use crate::peer::Dop853Peer;
 use crate::suite::work_precision::PEER_REPEATS;
 use std::time::{Duration, Instant};
 use stepladder::error::Error;
-use stepladder::measure::adaptive::{
+use stepladder::parallel::parallel_map;
+use stepladder::scene::{AnyScene, Scene, SceneVisitor};
+use stepladder::study::adaptive::{
     AdaptiveIntegrator, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, ToleranceLadderRecord,
     ToleranceLadderSpec, tolerance_ladder,
 };
-use stepladder::parallel::parallel_map;
-use stepladder::scene::{AnyScene, Scene, SceneVisitor};
 
 /// Which adaptive integrator a job runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

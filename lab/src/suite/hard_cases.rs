@@ -6,14 +6,14 @@
 
 use std::time::{Duration, Instant};
 use stepladder::error::Error;
-use stepladder::measure::hard::eccentric::{
+use stepladder::scene::KeplerEccentric;
+use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
+use stepladder::study::hard::eccentric::{
     ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, ORDER_SCHEMES, Pericentre,
     RoundOffRecord, eccentric_energy, eccentric_order, stormer_round_off,
 };
-use stepladder::measure::hard::escape::{EscapeRecord, EscapeSpec, escape_or_trapped};
-use stepladder::measure::hard::following::{FollowingRecord, WellSpec, following};
-use stepladder::scene::KeplerEccentric;
-use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
+use stepladder::study::hard::escape::{EscapeRecord, EscapeSpec, escape_or_trapped};
+use stepladder::study::hard::following::{FollowingRecord, WellSpec, following};
 use stepladder::tolerance::{
     ECCENTRIC_ENERGY_PERIODS, ECCENTRIC_MAX_RUNG_STEPS, ENERGY_STEPS_PER_PERICENTRE,
 };
@@ -23,7 +23,7 @@ pub const ESCAPE_DELTAS: [f64; 2] = [1e-2, 1e-3];
 
 /// The main energy study's step, in periods, used as the naive step on the
 /// eccentric orbits.
-pub const NAIVE_STEP: f64 = stepladder::measure::geometry::energy::DEFAULT_STEP;
+pub const NAIVE_STEP: f64 = stepladder::study::geometry::energy::DEFAULT_STEP;
 
 /// One unit of work.
 #[derive(Clone, Copy, Debug, PartialEq)]

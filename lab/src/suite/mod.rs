@@ -3,7 +3,7 @@
 //! so the records are the same whatever the thread count.
 
 use stepladder::error::Error;
-use stepladder::measure::case::{Case, case};
+use stepladder::study::case::{Case, case};
 
 pub mod adaptive;
 pub mod hard_cases;
@@ -12,18 +12,18 @@ pub mod work_precision;
 
 use crate::suite::hard_cases::{HardCases, hard_jobs, run_hard_jobs};
 use std::time::{Duration, Instant};
-use stepladder::measure::Verdict;
-use stepladder::measure::accuracy::order::{OrderRecord, OrderSpec};
-use stepladder::measure::accuracy::phase::{PhaseRecord, phase_error};
-use stepladder::measure::accuracy::scene_check::{SceneCheck, check_scene};
-use stepladder::measure::accuracy::trajectory::{TrajectoryRecord, earth_sun_experiments};
-use stepladder::measure::geometry::energy::{EnergyRecord, EnergySpec};
-use stepladder::measure::geometry::reverse::{ReverseRecord, ReverseSpec};
-use stepladder::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec};
-use stepladder::measure::stability::{StabilityRecord, stability};
 use stepladder::parallel::parallel_map;
 use stepladder::scene::{AnyScene, Scene, SceneVisitor};
 use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
+use stepladder::study::Verdict;
+use stepladder::study::accuracy::order::{OrderRecord, OrderSpec};
+use stepladder::study::accuracy::phase::{PhaseRecord, phase_error};
+use stepladder::study::accuracy::scene_check::{SceneCheck, check_scene};
+use stepladder::study::accuracy::trajectory::{TrajectoryRecord, earth_sun_experiments};
+use stepladder::study::geometry::energy::{EnergyRecord, EnergySpec};
+use stepladder::study::geometry::reverse::{ReverseRecord, ReverseSpec};
+use stepladder::study::geometry::symplectic::{SymplecticRecord, SymplecticSpec};
+use stepladder::study::stability::{StabilityRecord, stability};
 
 /// Every record of one scheme on one scene.
 #[derive(Clone, Debug)]
@@ -70,7 +70,7 @@ pub struct SuiteRecords {
     pub work_timing: Vec<crate::suite::work_precision::WorkTiming>,
     /// Every scheme's cost of a step against the hand-written floor
     /// (machine-dependent).
-    pub speed: stepladder::measure::cost::step_time::SpeedRecord,
+    pub speed: stepladder::study::cost::step_time::SpeedRecord,
     /// The tolerance ladders of the adaptive integrators.
     pub adaptive: crate::suite::adaptive::AdaptiveRecords,
     /// Wall time of the whole suite.
@@ -183,7 +183,7 @@ fn speed_against_error(
 ) -> (
     Vec<crate::suite::work_precision::WorkRecord>,
     Vec<crate::suite::work_precision::WorkTiming>,
-    stepladder::measure::cost::step_time::SpeedRecord,
+    stepladder::study::cost::step_time::SpeedRecord,
 ) {
     let scenes = AnyScene::all();
     let orders: Vec<Vec<&OrderRecord>> = scenes
@@ -198,9 +198,9 @@ fn speed_against_error(
         })
         .collect();
     let (work, timing) = crate::suite::work_precision::work_study(&scenes, &orders, threads);
-    let speed = stepladder::measure::cost::step_time::speed(
-        stepladder::measure::cost::step_time::SPEED_STEPS,
-        stepladder::measure::cost::step_time::SPEED_REPEATS,
+    let speed = stepladder::study::cost::step_time::speed(
+        stepladder::study::cost::step_time::SPEED_STEPS,
+        stepladder::study::cost::step_time::SPEED_REPEATS,
     );
     (work, timing, speed)
 }

@@ -5,12 +5,12 @@
 
 use std::time::{Duration, Instant};
 use stepladder::error::Error;
-use stepladder::measure::roundoff::floor::{
-    PairRecord, RoundoffRecord, RoundoffSpec, assemble, study_pair,
-};
-use stepladder::measure::roundoff::longrun::{LongrunRecord, LongrunSpec, longrun_of};
 use stepladder::scene::{AnyScene, Harmonic, KeplerCircular};
 use stepladder::scheme::compensated::{pair_ids, paired_ids};
+use stepladder::study::round_off::floor::{
+    PairRecord, RoundoffRecord, RoundoffSpec, assemble, study_pair,
+};
+use stepladder::study::round_off::longrun::{LongrunRecord, LongrunSpec, longrun_of};
 
 /// Every record of the round-off studies.
 #[derive(Clone, Debug)]

@@ -1,6 +1,6 @@
 //! The work-precision study over the catalogue and the built-in scenes:
 //! for each scene, every scheme's cost of reaching each target error (from
-//! [`stepladder::measure::cost::work_points`]), the `ode_solvers` peer beside them
+//! [`stepladder::study::cost::work_points`]), the `ode_solvers` peer beside them
 //! ([`crate::peer`]), the cheapest scheme per target, and, apart
 //! from these deterministic records, the wall time it all takes here.
 
@@ -8,15 +8,15 @@ use crate::peer::{PeerTimes, PeerWork, peer_work};
 use serde::Serialize;
 use std::time::Duration;
 use stepladder::error::Error;
-use stepladder::measure::accuracy::order::{OrderRecord, OrderSpec};
-use stepladder::measure::case::case;
-use stepladder::measure::cost::step_time::{SPEED_STEP, time_run};
-use stepladder::measure::cost::work_points::{
-    ENERGY_PERIODS, Reach, SchemeWork, TARGETS, TargetCost, cheapest, cost_to_reach, scheme_work,
-};
 use stepladder::parallel::parallel_map;
 use stepladder::scene::{AnyScene, Scene, SceneVisitor};
 use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
+use stepladder::study::accuracy::order::{OrderRecord, OrderSpec};
+use stepladder::study::case::case;
+use stepladder::study::cost::step_time::{SPEED_STEP, time_run};
+use stepladder::study::cost::work_points::{
+    ENERGY_PERIODS, Reach, SchemeWork, TARGETS, TargetCost, cheapest, cost_to_reach, scheme_work,
+};
 
 /// Steps of one timed run of a scheme on a scene, for its time per force
 /// evaluation.

@@ -1,9 +1,9 @@
 //! The tolerance ladders of the suite: the crate's own adaptive pairs
 //! against their controllers' theory, the peer measured alike.
 
-use stepladder::measure::Verdict;
-use stepladder::measure::adaptive::RunEnd;
-use stepladder::measure::geometry::energy::EnergyClass;
+use stepladder::study::Verdict;
+use stepladder::study::adaptive::RunEnd;
+use stepladder::study::geometry::energy::EnergyClass;
 
 /// DPRKN6(4) with local extrapolation: error ~ TOL^(6/5) on both orbits,
 /// its energy drifting and its round trip missing the start, as a

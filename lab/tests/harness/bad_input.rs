@@ -7,14 +7,14 @@ use super::cli::refused;
 use nalgebra::Vector2;
 use stepladder::error::Error;
 use stepladder::ladder::{Ladder, LadderChoice};
-use stepladder::measure::accuracy::order::{DropReason, OrderSpec, global_order};
-use stepladder::measure::geometry::energy::{EnergySpec, energy_drift};
-use stepladder::measure::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::measure::geometry::symplectic::{SymplecticSpec, symplecticity};
 use stepladder::run::{Outcome, integrate};
 use stepladder::scene::{AnyScene, Harmonic, KeplerCircular, KeplerEccentric};
 use stepladder::scheme::{ImplicitMidpoint, VELOCITY_VERLET};
 use stepladder::state::State;
+use stepladder::study::accuracy::order::{DropReason, OrderSpec, global_order};
+use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::study::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
 
 const BAD_NUMBERS: [f64; 5] = [0.0, -0.1, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
 

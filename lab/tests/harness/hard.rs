@@ -5,18 +5,16 @@
 
 use super::cli::{json, refused};
 use super::common::settings;
-use stepladder::measure::accuracy::order::DropReason;
-use stepladder::measure::hard::eccentric::{
-    ECCENTRICITIES, ORDER_SCHEMES, OrbitEnergy, OrderStatus, Pericentre, eccentric_order,
-};
-use stepladder::measure::hard::escape::{
-    EscapeSpec, Misclassified, classify_at, escape_or_trapped,
-};
-use stepladder::measure::hard::following::{Event, WellSpec, following, line_fit};
 use stepladder::scene::{Anharmonic, KeplerEccentric, Scene, Separatrix};
 use stepladder::scheme::{
     POSITION_VERLET, Scheme, SchemeVisitor, VELOCITY_VERLET, catalogue, visit_scheme,
 };
+use stepladder::study::accuracy::order::DropReason;
+use stepladder::study::hard::eccentric::{
+    ECCENTRICITIES, ORDER_SCHEMES, OrbitEnergy, OrderStatus, Pericentre, eccentric_order,
+};
+use stepladder::study::hard::escape::{EscapeSpec, Misclassified, classify_at, escape_or_trapped};
+use stepladder::study::hard::following::{Event, WellSpec, following, line_fit};
 use stepladder::tolerance::{ERROR_CEILING, SEPARATRIX_SLOPE_TOLERANCE};
 use stepladder_lab::suite::hard_cases::HardCases;
 
@@ -567,9 +565,9 @@ fn hard_case_commands_answer_in_json_and_refuse_bad_input_in_one_line() {
 /// that step, the largest error falls at first order.
 #[test]
 fn euler_cromer_turns_first_order_below_the_predicted_step() {
-    use stepladder::measure::hard::eccentric::kick_lag;
     use stepladder::run::integrate;
     use stepladder::scheme::EULER_CROMER;
+    use stepladder::study::hard::eccentric::kick_lag;
     let r = hard()
         .orders
         .iter()

@@ -7,14 +7,14 @@
 //! scene (masses, units, mass-weighting, the published tables) and the
 //! harness's estimate of the error it never sees.
 
-use stepladder::measure::Verdict;
-use stepladder::measure::accuracy::order::{OrderRecord, OrderSpec, global_order};
-use stepladder::measure::accuracy::scene_check::check_scene;
 use stepladder::nalgebra::SVector;
 use stepladder::run::integrate;
 use stepladder::scene::{Invariant, OuterSolarSystem, Pleiades, Scene, SceneMeta};
 use stepladder::scheme::{CompensatedSplitting, KAHAN_LI8, Rk4, Scheme, VELOCITY_VERLET, YOSHIDA6};
 use stepladder::state::{Real, State};
+use stepladder::study::Verdict;
+use stepladder::study::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use stepladder::study::accuracy::scene_check::check_scene;
 use stepladder::tolerance::SCENE_TOLERANCE;
 
 /// The unit round-off of f64.

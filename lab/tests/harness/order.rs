@@ -2,10 +2,10 @@
 //! or ladders, and it must use the steps actually run.
 
 use stepladder::ladder::{Ladder, LadderChoice};
-use stepladder::measure::accuracy::order::{OrderSpec, global_order};
 use stepladder::run::integrate;
 use stepladder::scene::{Harmonic, Scene};
 use stepladder::scheme::{EULER_CROMER, VELOCITY_VERLET};
+use stepladder::study::accuracy::order::{OrderSpec, global_order};
 
 /// Euler-Cromer's positions are leap-frog's started with a velocity off by
 /// `h a0 / 2`; that O(h) error is `sin(w t)`-shaped and vanishes at every
@@ -104,8 +104,8 @@ impl Scene<1> for Unsolved {
 
 #[test]
 fn without_an_exact_solution_successive_rungs_give_the_same_order() {
-    use stepladder::measure::accuracy::order::Reference;
     use stepladder::scheme::{Euler, Rk4};
+    use stepladder::study::accuracy::order::Reference;
     let hidden = Unsolved(Harmonic::new(1.3, 0.4, 0.9).unwrap());
     for (order, record) in [
         (
@@ -187,7 +187,7 @@ fn an_exact_scheme_stops_at_the_floor_without_a_verdict() {
     assert_eq!(r.measured_order, None);
     assert_eq!(
         r.verdict,
-        stepladder::measure::Verdict::Inconclusive,
+        stepladder::study::Verdict::Inconclusive,
         "{}",
         r.reason
     );
@@ -201,9 +201,9 @@ fn an_exact_scheme_stops_at_the_floor_without_a_verdict() {
 /// never failed.
 #[test]
 fn dprkn8_passes_on_three_scenes_and_is_undecided_on_the_anharmonic_well() {
-    use stepladder::measure::Verdict;
     use stepladder::scene::{Anharmonic, KeplerCircular, KeplerEccentric};
     use stepladder::scheme::DPRKN8;
+    use stepladder::study::Verdict;
     let spec = OrderSpec::default();
     let orders = [
         global_order(&DPRKN8, &Harmonic::default(), &spec).unwrap(),

@@ -1,5 +1,5 @@
 //! The catalogue pins its own errors, as a downstream crate does (see
-//! `stepladder::measure::accuracy::pin`): one file per scheme and built-in
+//! `stepladder::study::accuracy::pin`): one file per scheme and built-in
 //! scene in `snapshots/pins/`, committed. A refactor that moves a scheme's
 //! error at the pinned step by more than the round-off the order study
 //! measured there fails here, whatever it does to the order.
@@ -10,9 +10,6 @@
 //! order, and the same run under another platform's rounding, pass.
 
 use std::path::{Path, PathBuf};
-use stepladder::measure::accuracy::order::{OrderSpec, global_order};
-use stepladder::measure::accuracy::pin::{Pin, PinOutcome, check_pin_with, pin_path, pinned_error};
-use stepladder::measure::case::case;
 use stepladder::nalgebra::SVector;
 use stepladder::parallel::{default_threads, parallel_map};
 use stepladder::run::integrate;
@@ -24,6 +21,9 @@ use stepladder::scheme::{
     VerletComposition, YOSHIDA6,
 };
 use stepladder::state::{Real, State};
+use stepladder::study::accuracy::order::{OrderSpec, global_order};
+use stepladder::study::accuracy::pin::{Pin, PinOutcome, check_pin_with, pin_path, pinned_error};
+use stepladder::study::case::case;
 use stepladder::tolerance::TWIN_SCALE;
 
 #[test]

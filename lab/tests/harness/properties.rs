@@ -4,14 +4,14 @@
 use proptest::prelude::*;
 use stepladder::ladder::AUTO_MAX_RUNG_EVALUATIONS;
 use stepladder::ladder::per_octave;
-use stepladder::measure::accuracy::order::{OrderSpec, RungData, analyse, global_order};
-use stepladder::measure::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::measure::geometry::tangent::step_jacobian;
+use stepladder::maths::tangent::step_jacobian;
 use stepladder::run::integrate;
 use stepladder::scene::Harmonic;
 use stepladder::scene::Scene;
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
 use stepladder::state::State;
+use stepladder::study::accuracy::order::{OrderSpec, RungData, analyse, global_order};
+use stepladder::study::geometry::reverse::{ReverseSpec, reversibility};
 use stepladder::tolerance::{MIN_WINDOW_HALVINGS, clean_fraction, order_verdict};
 
 /// Cases per property: 64, or `PROPTEST_CASES` when set (to search harder).
@@ -193,7 +193,7 @@ struct ClosedForm {
 impl SchemeVisitor for &ClosedForm {
     type Output = Result<(), String>;
     fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output {
-        use stepladder::measure::accuracy::phase::one_step_matrix;
+        use stepladder::study::accuracy::phase::one_step_matrix;
         let id = scheme.meta().id;
         // the matrix of x'' = -x at step z; on w0 the same map in units of 1/w0
         let m = one_step_matrix(scheme, self.z).ok_or(format!("{id}: no step"))?;
@@ -279,13 +279,13 @@ proptest! {
 //   statement is too narrow.
 // ---------------------------------------------------------------------------
 
-use stepladder::measure::Verdict;
-use stepladder::measure::accuracy::order::OrderRecord;
-use stepladder::measure::case::case;
-use stepladder::measure::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
-use stepladder::measure::geometry::reverse::ReverseRecord;
-use stepladder::measure::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
 use stepladder::scene::{Anharmonic, AnyScene, KeplerCircular, KeplerEccentric, Scaled};
+use stepladder::study::Verdict;
+use stepladder::study::accuracy::order::OrderRecord;
+use stepladder::study::case::case;
+use stepladder::study::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
+use stepladder::study::geometry::reverse::ReverseRecord;
+use stepladder::study::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
 use stepladder::tolerance::ORDER_RESOLUTION;
 
 /// The four verdicts of one scheme on one scene, with their records.

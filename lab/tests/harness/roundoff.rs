@@ -4,10 +4,10 @@
 
 use super::cli::{json, refused, run};
 use stepladder::guard::assert_claims;
-use stepladder::measure::roundoff::floor::{PairRecord, RoundoffRecord};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene};
 use stepladder::scheme::compensated::{PairVisitor, paired_ids, visit_pair};
 use stepladder::scheme::{Scheme, StormerVerlet, StormerVerletCompensated};
+use stepladder::study::round_off::floor::{PairRecord, RoundoffRecord};
 use stepladder::tolerance::{
     COMPENSATED_LONGRUN_GAIN, RANDOM_WALK_EXPONENT_TOLERANCE, ROUND_OFF_EXPONENT_TOLERANCE,
     TWO_STEP_FLOOR_RATIO, reverse_tolerance_ulps,

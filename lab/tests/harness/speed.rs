@@ -3,13 +3,13 @@
 //! of the cheapest scheme, and the peer measured like the catalogue. No
 //! assertion here depends on how fast the machine is.
 
-use stepladder::measure::cost::step_time::{floor_verlet_kepler, run_steps, speed, time_run};
-use stepladder::measure::cost::work_points::{
-    Reach, TARGETS, TargetCost, WorkPoint, cheapest, cost_to_reach, start_evaluations,
-};
 use stepladder::run::integrate;
 use stepladder::scene::{AnyScene, Counted, Harmonic, KeplerCircular, Scene, SceneVisitor};
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
+use stepladder::study::cost::step_time::{floor_verlet_kepler, run_steps, speed, time_run};
+use stepladder::study::cost::work_points::{
+    Reach, TARGETS, TargetCost, WorkPoint, cheapest, cost_to_reach, start_evaluations,
+};
 use stepladder_lab::peer::{peer_targets, run_peer_any};
 use stepladder_lab::suite::work_precision::cheapest_per_target;
 

@@ -1,12 +1,12 @@
 //! Linear stability against its analytic values, and runs above the limit
 //! that must end early with a clear verdict.
 
-use stepladder::measure::accuracy::phase::one_step_matrix;
-use stepladder::measure::geometry::energy::{EnergySpec, energy_drift};
-use stepladder::measure::stability::{StabilityRecord, spectral_radius, stability};
 use stepladder::run::Outcome;
 use stepladder::scene::Harmonic;
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
+use stepladder::study::accuracy::phase::one_step_matrix;
+use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::study::stability::{StabilityRecord, spectral_radius, stability};
 
 struct Stability;
 impl SchemeVisitor for Stability {
@@ -137,10 +137,10 @@ fn a_stiff_oscillator_above_the_limit_ends_early_with_a_clear_verdict() {
 // ---------------------------------------------------------------------------
 // Maps unstable at every step: the growth law against independent values.
 
-use stepladder::measure::stability::{
+use stepladder::scheme::{BlackBox, DPRKN6, FOREST_RUTH, Force, QUINLAN_TREMAINE8, SchemeMeta};
+use stepladder::study::stability::{
     GrowthLaw, GrowthSource, determinant_round_off, growth_law, per_period,
 };
-use stepladder::scheme::{BlackBox, DPRKN6, FOREST_RUTH, Force, QUINLAN_TREMAINE8, SchemeMeta};
 use stepladder::tolerance::{GROWTH_POWER_TOLERANCE, GROWTH_VALUE_RESOLUTION, STABILITY_BISECTION};
 
 /// DPRKN6's `det M - 1 = d4 z^8 + d5 z^10` and its growth, exactly: the

@@ -275,13 +275,13 @@ mod tests {
     use nalgebra::SVector;
     use nalgebra::{DMatrix, SMatrix, SymmetricEigen};
     use std::f64::consts::TAU;
-    use stepladder::measure::Verdict;
-    use stepladder::measure::accuracy::scene_check::check_scene;
     use stepladder::run::integrate;
     use stepladder::scene::Harmonic;
     use stepladder::scene::Scene;
     use stepladder::scheme::Scheme;
     use stepladder::state::State;
+    use stepladder::study::Verdict;
+    use stepladder::study::accuracy::scene_check::check_scene;
 
     /// Numbers in scientific notation.
     fn sci(v: &[f64]) -> String {

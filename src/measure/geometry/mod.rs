@@ -1,6 +1,0 @@
-//! The geometric studies: what a scheme preserves of the flow.
-
-pub mod energy;
-pub mod reverse;
-pub mod symplectic;
-pub mod tangent;

@@ -1,0 +1,331 @@
+//! The crate's own adaptive integrators: embedded Runge-Kutta-Nyström
+//! pairs with the standard step-size controller (Hairer, Nørsett, Wanner I,
+//! II.4).
+//!
+//! Each step is tried with the main (order `p`) and the embedded (order `q`)
+//! solution from the same stages; their difference `err` estimates the
+//! embedded solution's local error, `C h^(q+1)`. Measured in the scaled
+//! root-mean-square norm `||e|| = sqrt(mean_i (e_i / sc_i)^2)`, `sc_i = tol
+//! (1 + max(|y0_i|, |y1_i|))`, the step is accepted when `||err|| <= 1` and
+//! the run continues with the main solution (local extrapolation). Either
+//! way the next step is
+//!
+//! `h_new = h min(max_growth, max(max_shrink, safety ||err||^(-1/(q+1))))`,
+//!
+//! the step at which the estimate would equal `safety^(q+1)` of the
+//! tolerance if `C` stayed put. The constants are the textbook ones:
+//!
+//! - `safety = 0.9` (HNW I, (4.13)): the estimate then aims at `0.9^5 = 0.59`
+//!   of the tolerance for DPRKN6(4), so that the variation of `C` from one
+//!   step to the next rarely pushes a step over and wastes its stages;
+//! - `max_growth = 5` (HNW's advice: between 1.5 and 5), so one step where
+//!   the estimate happens to be small (a near-zero of its leading term)
+//!   cannot launch a step that the next estimate must undo, and `1` right
+//!   after a rejection (HNW), when the estimate has just proved optimistic;
+//! - `max_shrink = 0.2`: a rejected step is retried at no less than a fifth,
+//!   which for a fifth-power estimate is `0.2^5 = 3e-4` of its error, enough
+//!   for any smooth change and still a bounded retreat where the estimate is
+//!   non-finite.
+//!
+//! The exponent `1/(q+1)` is the one the estimate's power dictates. It
+//! sets how fast the feedback settles, not where: whatever the exponent,
+//! the accepted steps settle where the estimate is a fixed fraction of the
+//! tolerance, so the step scales like `TOL^(1/(q+1))` and the global error
+//! like `TOL^(p/(q+1))`. The claimed proportionality is therefore derived
+//! from the controller's exponent (what the controller assumes of its
+//! estimate): a controller built with `1/p`, or an estimate from wrong
+//! embedded weights (whose power is then not `q+1`), claims an exponent
+//! the tolerance ladder refutes (see the tests).
+
+use super::integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request};
+use super::ladder::proportionality_exponent;
+use crate::error::Error;
+use crate::scene::Scene;
+use crate::scheme::{DPRKN6, DPRKN8, NystromTable};
+use crate::state::State;
+use crate::study::accuracy::order::exact_rung_error;
+use std::time::Instant;
+
+/// Most steps (accepted and rejected) one run may take.
+pub const MAX_STEPS: u64 = 2_000_000;
+
+/// The step-size controller's constants (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Controller {
+    /// The factor on the optimal step.
+    pub safety: f64,
+    /// Largest ratio of a step to the one before.
+    pub max_growth: f64,
+    /// Smallest ratio of a step to the one before.
+    pub max_shrink: f64,
+    /// The exponent of the error ratio, `1/(q+1)` for an estimate `~ h^(q+1)`.
+    pub exponent: f64,
+}
+
+impl Controller {
+    /// The standard controller for an estimate behaving like
+    /// `h^estimate_power`.
+    pub const fn standard(estimate_power: u32) -> Self {
+        Self {
+            safety: 0.9,
+            max_growth: 5.0,
+            max_shrink: 0.2,
+            exponent: 1.0 / estimate_power as f64,
+        }
+    }
+
+    /// The ratio of the next step to this one after an estimate `err`
+    /// (scaled: 1 is the tolerance), capped at `growth_cap`.
+    fn ratio(&self, err: f64, growth_cap: f64) -> f64 {
+        if !err.is_finite() {
+            return self.max_shrink;
+        }
+        let optimal = self.safety * err.powf(-self.exponent);
+        optimal.clamp(self.max_shrink, growth_cap)
+    }
+}
+
+/// An embedded Runge-Kutta-Nyström pair driven by a [`Controller`].
+#[derive(Clone, Copy, Debug)]
+pub struct EmbeddedPair<const S: usize> {
+    /// Name in tables.
+    pub name: &'static str,
+    /// The tableau; it must carry an embedded solution.
+    pub table: &'static NystromTable<S>,
+    /// The controller.
+    pub controller: Controller,
+}
+
+/// Dormand and Prince's RKN6(4) with the standard controller.
+pub const DPRKN6_ADAPTIVE: EmbeddedPair<6> = EmbeddedPair::new("DPRKN6(4) adaptive", &DPRKN6);
+
+/// Dormand, El-Mikkawy and Prince's RKN8(6) with the standard controller:
+/// eight force evaluations a step for order eight, against the twelve of
+/// DOP853 on `(q, v)`.
+pub const DPRKN8_ADAPTIVE: EmbeddedPair<9> = EmbeddedPair::new("DPRKN8(6) adaptive", &DPRKN8);
+
+impl<const S: usize> EmbeddedPair<S> {
+    /// The pair of `table` with the standard controller for its estimate.
+    /// A table without an embedded solution is refused at compile time.
+    pub const fn new(name: &'static str, table: &'static NystromTable<S>) -> Self {
+        let Some(embedded) = table.embedded else {
+            panic!("an adaptive pair needs an embedded solution")
+        };
+        Self {
+            name,
+            table,
+            controller: Controller::standard(embedded.order + 1),
+        }
+    }
+}
+
+/// The scaled RMS norm of `e` against `tol (1 + max(|y0_i|, |y1_i|))`.
+fn scaled_norm<const D: usize>(e: &State<D>, y0: &State<D>, y1: &State<D>, tol: f64) -> f64 {
+    let mut sum = 0.0;
+    let parts = [(&e.q, &y0.q, &y1.q), (&e.v, &y0.v, &y1.v)];
+    for (e, a, b) in parts {
+        for i in 0..D {
+            let sc = tol * (1.0 + a[i].abs().max(b[i].abs()));
+            sum += (e[i] / sc).powi(2);
+        }
+    }
+    (sum / (2 * D) as f64).sqrt()
+}
+
+impl<const S: usize> EmbeddedPair<S> {
+    /// The first step, by HNW I, II.4 ("starting step size"): an explicit
+    /// Euler step of `h0 = 0.01 ||y0|| / ||f0||` measures how fast `f`
+    /// changes, and `h1 = (0.01 / max(||f0||, ||f'||))^(1/(q+1))` makes the
+    /// estimate about a hundredth of the tolerance; the smaller of `h1`
+    /// and `100 h0`. One force evaluation.
+    fn first_step<P: Scene<D>, const D: usize>(
+        &self,
+        scene: &P,
+        y0: &State<D>,
+        a0: &nalgebra::SVector<f64, D>,
+        tol: f64,
+        t_end: f64,
+    ) -> f64 {
+        let f0 = State::new(y0.v, *a0);
+        let zero = State::new(nalgebra::SVector::zeros(), nalgebra::SVector::zeros());
+        let d0 = scaled_norm(y0, y0, y0, tol);
+        let d1 = scaled_norm(&f0, y0, y0, tol);
+        let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+            1e-6
+        } else {
+            0.01 * d0 / d1
+        };
+        let q1 = y0.q + y0.v * h0;
+        let f1 = State::new(y0.v + a0 * h0, scene.acceleration(&q1));
+        let df = State::new(f1.q - f0.q, f1.v - f0.v);
+        let d2 = scaled_norm(&df, y0, &zero, tol) / h0;
+        let largest = d1.max(d2);
+        let h1 = if largest <= 1e-15 {
+            (h0 * 1e-3).max(1e-6)
+        } else {
+            (0.01 / largest).powf(self.controller.exponent)
+        };
+        (100.0 * h0).min(h1).min(t_end)
+    }
+}
+
+impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn claims(&self) -> AdaptiveClaims {
+        let p = self.table.meta.order;
+        // the power of h the controller assumes its estimate follows
+        let power = (1.0 / self.controller.exponent).round() as u32;
+        AdaptiveClaims {
+            order: p,
+            estimate_power: power,
+            proportionality: Some(proportionality_exponent(p, power)),
+            symplectic: self.table.meta.symplectic,
+            symmetric: self.table.meta.symmetric,
+            error_factor: None,
+        }
+    }
+
+    fn fixed_step_error<P: Scene<D>, const D: usize>(
+        &self,
+        scene: &P,
+        t_end: f64,
+        steps: u64,
+    ) -> Option<f64> {
+        // measured as the order study measures a rung
+        exact_rung_error(self.table, scene, t_end, steps.max(1)).filter(|e| e.is_finite())
+    }
+
+    fn integrate<P: Scene<D>, const D: usize>(
+        &self,
+        scene: &P,
+        start: &State<D>,
+        t_end: f64,
+        tol: f64,
+    ) -> Result<AdaptiveRun<D>, Error> {
+        check_request(t_end, tol)?;
+        let clock = Instant::now();
+        let fsal = self.table.first_same_as_last();
+        let mut y = *start;
+        let mut a = scene.acceleration(&y.q);
+        let mut evaluations = 1u64;
+        let mut h = self.first_step(scene, &y, &a, tol, t_end);
+        evaluations += 1;
+        let mut run = AdaptiveRun {
+            trajectory: vec![(0.0, y)],
+            evaluations: 0,
+            accepted: 0,
+            rejected: 0,
+            end: RunEnd::Reached,
+            time: Default::default(),
+            reported_evaluations: None,
+        };
+        let mut t = 0.0;
+        let mut just_rejected = false;
+        while t < t_end {
+            if run.accepted + run.rejected >= MAX_STEPS {
+                run.end = RunEnd::StepLimit;
+                break;
+            }
+            // the last step lands on t_end; a step within 1% of the rest is
+            // stretched to it rather than leaving a sliver
+            let last = t + 1.01 * h >= t_end;
+            if last {
+                h = t_end - t;
+            }
+            if t + h == t {
+                run.end = RunEnd::StepUnderflow;
+                break;
+            }
+            let trial = self.table.attempt(scene, &y, a, h);
+            evaluations += S as u64 - 1;
+            let err = scaled_norm(&trial.error, &y, &trial.state, tol);
+            let finite = trial.state.is_finite();
+            if err <= 1.0 && finite {
+                let cap = if just_rejected {
+                    1.0
+                } else {
+                    self.controller.max_growth
+                };
+                t = if last { t_end } else { t + h };
+                y = trial.state;
+                a = if fsal {
+                    trial.a_end
+                } else {
+                    evaluations += 1;
+                    scene.acceleration(&y.q)
+                };
+                run.trajectory.push((t, y));
+                run.accepted += 1;
+                h *= self.controller.ratio(err, cap);
+                just_rejected = false;
+            } else {
+                run.rejected += 1;
+                let err = if finite { err } else { f64::INFINITY };
+                h *= self.controller.ratio(err, 1.0);
+                just_rejected = true;
+            }
+        }
+        run.evaluations = evaluations;
+        run.time = clock.elapsed();
+        Ok(run)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Counted, KeplerCircular, KeplerEccentric};
+
+    #[test]
+    fn bad_requests_are_refused_not_panicked_on() {
+        let scene = KeplerCircular;
+        for (t_end, tol) in [
+            (1.0, 0.0),
+            (1.0, -1e-6),
+            (1.0, f64::NAN),
+            (0.0, 1e-6),
+            (f64::INFINITY, 1e-6),
+        ] {
+            assert!(
+                DPRKN6_ADAPTIVE.run(&scene, t_end, tol).is_err(),
+                "{t_end} {tol}"
+            );
+        }
+    }
+
+    /// Every evaluation is counted: the scene's own count equals the run's,
+    /// five a step tried (first same as last), one for the start and one
+    /// for the first step's guess; the run ends exactly at `t_end`.
+    #[test]
+    fn evaluations_are_counted_and_the_run_ends_at_t_end() {
+        let scene = Counted::new(KeplerEccentric::default());
+        let t_end = 3.3 * scene.period();
+        let run = DPRKN6_ADAPTIVE.run(&scene, t_end, 1e-8).unwrap();
+        assert_eq!(run.end, RunEnd::Reached);
+        assert_eq!(run.evaluations, scene.evaluations());
+        assert_eq!(run.evaluations, 2 + 5 * (run.accepted + run.rejected));
+        assert_eq!(run.trajectory.len() as u64, run.accepted + 1);
+        assert_eq!(run.trajectory.last().unwrap().0, t_end);
+        assert!(run.rejected > 0, "an eccentric orbit needs a few retries");
+        let ts: Vec<f64> = run.trajectory.iter().map(|x| x.0).collect();
+        assert!(ts.windows(2).all(|w| w[1] > w[0]));
+    }
+
+    /// The controller's fixed point: with an estimate `C h^5` held
+    /// constant, `h_new = 0.9 h err^(-1/5)` settles at `err = 0.9^5`.
+    #[test]
+    fn the_controller_settles_at_safety_to_the_estimate_power() {
+        let c = Controller::standard(5);
+        let mut h: f64 = 1.0;
+        for _ in 0..200 {
+            let err = 3.0 * h.powi(5);
+            h *= c.ratio(err, c.max_growth);
+        }
+        assert!((3.0 * h.powi(5) / 0.9f64.powi(5) - 1.0).abs() < 1e-12);
+        assert_eq!(c.ratio(f64::INFINITY, 5.0), 0.2);
+        assert_eq!(c.ratio(0.0, 5.0), 5.0);
+    }
+}

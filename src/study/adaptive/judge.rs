@@ -1,0 +1,266 @@
+//! The verdicts of the tolerance ladder: each claim of an adaptive
+//! integrator judged against the figures the ladder measured.
+
+use super::integrator::{AdaptiveClaims, RunEnd};
+use super::ladder::{
+    AdaptiveClaim, EnergyGrowth, JudgedClaim, MIN_FIT_POINTS, Proportionality, RoundTrip,
+    TolerancePoint,
+};
+use crate::maths::fit::power_law;
+use crate::study::Verdict;
+use crate::study::geometry::energy::EnergyClass;
+
+fn pre_asymptotic_method(claims: &AdaptiveClaims, f: &Proportionality) -> Option<String> {
+    let method = f.method_order.as_ref()?;
+    let m = f.estimate_power.max(1) as f64;
+    // the controller's half of the claim, checked on its own: the accepted
+    // steps grow like TOL^(-1/m) (a controller assuming the wrong power
+    // still steps by its estimate's, and is refuted here)
+    let steps = f.step_scaling.as_ref()?;
+    // and the interval must be narrow enough to tell m from its neighbours:
+    // -1/m and -1/(m + 1) are 1/(m (m + 1)) apart, so at most half that wide
+    let sharp = steps.ci95[1] - steps.ci95[0] < 1.0 / (m * (m + 1.0));
+    let controller = sharp && steps.ci95[0] <= -1.0 / m && -1.0 / m <= steps.ci95[1];
+    let above = controller && method.ci95[0] > claims.order as f64;
+    let predicted = [method.ci95[0] / m, method.ci95[1] / m];
+    let agrees = predicted[0] <= f.ci95[1] && f.ci95[0] <= predicted[1];
+    (above && agrees).then(|| {
+        format!(
+            "the accepted steps grow like TOL^{:.4} [{:.4}, {:.4}], as the controller claims \
+             (-1/{}), and at fixed steps over the same step counts the method shows order {:.2} \
+             [{:.2}, {:.2}], above its asymptotic {}: its higher error terms still dominate \
+             there, and that order over m predicts [{:.3}, {:.3}], which the exponent meets \
+             (the asymptotic exponent is beyond the ladder's reach)",
+            steps.slope,
+            steps.ci95[0],
+            steps.ci95[1],
+            f.estimate_power,
+            method.order,
+            method.ci95[0],
+            method.ci95[1],
+            claims.order,
+            predicted[0],
+            predicted[1]
+        )
+    })
+}
+
+/// The accepted steps against the tolerance, `N ~ TOL^s`, judged against
+/// the controller's `s = -1/m` (steps settle at `h ~ TOL^(1/m)`, see the
+/// module documentation): `None` where no exponent is claimed or fewer than
+/// three tolerances reached `t_end`. An estimate that shrinks like a lower
+/// power `m' < m` of `h` makes the steps grow like `TOL^(-1/m')`; the
+/// nearest such law is `m' = m - 1`, so the cost fails when its whole
+/// interval lies below the halfway point between `-1/m` and `-1/(m - 1)`:
+/// it grows faster than the claimed controller can, and as fast as one
+/// with a worse estimate. (Growing slower is cheaper, and refutes nothing.)
+pub(super) fn cost_growth(
+    claims: &AdaptiveClaims,
+    points: &[TolerancePoint],
+) -> Option<JudgedClaim> {
+    claims.proportionality?;
+    let m = f64::from(claims.estimate_power.max(2));
+    let steps: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.end == RunEnd::Reached && p.accepted > 0)
+        .map(|p| (p.tolerance, p.accepted as f64))
+        .collect();
+    let fit = power_law(&steps)?;
+    let halfway = -0.5 * (1.0 / m + 1.0 / (m - 1.0));
+    let refuted = fit.ci95[1] < halfway;
+    let why = format!(
+        "accepted steps ~ TOL^{:.3} [{:.3}, {:.3}] over {} tolerances, against the controller's TOL^{:.3}{}",
+        fit.slope,
+        fit.ci95[0],
+        fit.ci95[1],
+        fit.points,
+        -1.0 / m,
+        if refuted {
+            format!(
+                ": the cost grows faster than an estimate of power {m} allows (the whole interval below {halfway:.3}, halfway to power {})",
+                m - 1.0
+            )
+        } else {
+            String::new()
+        }
+    );
+    Some(JudgedClaim {
+        claim: AdaptiveClaim::Cost,
+        verdict: Verdict::from_bool(!refuted),
+        reason: why,
+    })
+}
+
+/// Where the integrator reports what it spent: the report against the
+/// calls counted on its force callback. A count is exact, so any
+/// difference refutes the report.
+pub(super) fn bookkeeping(points: &[TolerancePoint]) -> Option<JudgedClaim> {
+    let reported: Vec<_> = points
+        .iter()
+        .filter_map(|p| p.reported_evaluations.map(|r| (p, r)))
+        .collect();
+    if reported.is_empty() {
+        return None;
+    }
+    let (verdict, reason) = match reported.iter().find(|(p, r)| *r != p.evaluations) {
+        Some((p, r)) => (
+            Verdict::Fail,
+            format!(
+                "at TOL = {:.0e} it reports {r} force evaluations and made {}",
+                p.tolerance, p.evaluations
+            ),
+        ),
+        None => (
+            Verdict::Pass,
+            "its reported force evaluations equal the counted ones".to_string(),
+        ),
+    };
+    Some(JudgedClaim {
+        claim: AdaptiveClaim::Evaluations,
+        verdict,
+        reason,
+    })
+}
+
+/// The achieved error against the stated bound `error <= factor x TOL`, at
+/// every tolerance whose error the ladder resolves (the points the exponent
+/// is fitted on: the run reached `t_end`, the error is below the ceiling and
+/// at least `1 / ROUND_OFF_SHARE` times the round-off the run can have
+/// made). A bound is a bound: the worst ratio above it refutes the claim,
+/// and no point resolved leaves it undecided.
+pub(super) fn error_factor(
+    claims: &AdaptiveClaims,
+    points: &[TolerancePoint],
+) -> Option<JudgedClaim> {
+    let factor = claims.error_factor?;
+    let resolved: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.fitted)
+        .filter_map(|p| Some((p.tolerance, p.error?)))
+        .collect();
+    let worst = resolved
+        .iter()
+        .copied()
+        .max_by(|a, b| (a.1 / a.0).total_cmp(&(b.1 / b.0)));
+    let (verdict, reason) = match worst {
+        None => (
+            Verdict::Inconclusive,
+            format!(
+                "error <= {factor} x TOL claimed, but no tolerance's error is resolved above round-off"
+            ),
+        ),
+        Some((tol, e)) => {
+            let ratio = e / tol;
+            let holds = ratio <= factor;
+            (
+                Verdict::from_bool(holds),
+                format!(
+                    "the error is at most {ratio:.3} x TOL over {} resolved tolerances (at TOL = {tol:.0e}: {e:.3e}), {} the claimed {factor}",
+                    resolved.len(),
+                    if holds { "within" } else { "above" }
+                ),
+            )
+        }
+    };
+    Some(JudgedClaim {
+        claim: AdaptiveClaim::ErrorFactor,
+        verdict,
+        reason,
+    })
+}
+
+/// The fitted exponent against the controller's theory; where it misses,
+/// undecided only when the method is shown to be above its order at the
+/// ladder's steps (see the module documentation).
+pub(super) fn judge_exponent(
+    claims: &AdaptiveClaims,
+    fit: Option<&Proportionality>,
+) -> JudgedClaim {
+    let (verdict, reason) = match fit {
+        Some(f) if f.theory.is_none() => (
+            Verdict::Pass,
+            format!(
+                "error ~ TOL^{:.3} [{:.3}, {:.3}], measured only: the estimate's power of h \
+                 changes along the ladder, so no single exponent is predicted",
+                f.exponent, f.ci95[0], f.ci95[1]
+            ),
+        ),
+        Some(f) if f.agrees() => (
+            Verdict::Pass,
+            format!(
+                "error ~ TOL^{:.3} [{:.3}, {:.3}] contains the predicted {:.3}",
+                f.exponent,
+                f.ci95[0],
+                f.ci95[1],
+                f.theory.unwrap_or(f64::NAN)
+            ),
+        ),
+        Some(f) => {
+            let missed = format!(
+                "error ~ TOL^{:.3} [{:.3}, {:.3}] excludes the predicted {:.3}",
+                f.exponent,
+                f.ci95[0],
+                f.ci95[1],
+                f.theory.unwrap_or(f64::NAN)
+            );
+            match pre_asymptotic_method(claims, f) {
+                Some(why) => (Verdict::Inconclusive, format!("{missed}, but {why}")),
+                None => (Verdict::Fail, missed),
+            }
+        }
+        None => (
+            Verdict::Inconclusive,
+            format!("fewer than {MIN_FIT_POINTS} clean tolerances: no exponent fitted"),
+        ),
+    };
+    JudgedClaim {
+        claim: AdaptiveClaim::Exponent,
+        verdict,
+        reason,
+    }
+}
+
+/// The long run's energy: a drift refutes a symplecticity or symmetry
+/// claim; without one, nothing is claimed and the class is only shown.
+pub(super) fn judge_energy(claims: &AdaptiveClaims, e: &EnergyGrowth) -> JudgedClaim {
+    let class = e.class.map_or("unclassified", |c| c.name());
+    let conserves = claims.symplectic || claims.symmetric;
+    let (verdict, reason) = if conserves && e.class == Some(EnergyClass::Drifting) {
+        (
+            Verdict::Fail,
+            format!("energy {class}, against a conservation claim"),
+        )
+    } else {
+        (Verdict::Pass, format!("energy {class} (nothing claimed)"))
+    };
+    JudgedClaim {
+        claim: AdaptiveClaim::Energy,
+        verdict,
+        reason,
+    }
+}
+
+/// The round trip: missing the start refutes a symmetry claim.
+pub(super) fn judge_round_trip(claims: &AdaptiveClaims, r: &RoundTrip) -> JudgedClaim {
+    let (verdict, reason) = if claims.symmetric && !r.returns {
+        (
+            Verdict::Fail,
+            "the round trip misses the start, against a symmetry claim".to_string(),
+        )
+    } else if r.returns {
+        (
+            Verdict::Pass,
+            "the round trip returns to round-off".to_string(),
+        )
+    } else {
+        (
+            Verdict::Pass,
+            "the round trip misses the start (not symmetric, as claimed)".to_string(),
+        )
+    };
+    JudgedClaim {
+        claim: AdaptiveClaim::RoundTrip,
+        verdict,
+        reason,
+    }
+}

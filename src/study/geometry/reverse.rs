@@ -1,0 +1,274 @@
+//! Reversibility: `N` steps with `h`, then `N` steps with `-h` from the
+//! synchronised end state; a time-symmetric scheme comes back to round-off.
+
+use crate::error::Error;
+use crate::ladder::check_cost;
+use crate::run::{Outcome, integrate};
+use crate::scene::Scene;
+use crate::scheme::Scheme;
+use crate::state::State;
+use crate::study::Verdict;
+use crate::study::geometry::energy::MAX_HALVINGS;
+use crate::study::wording::{figure, vs_upper};
+use crate::tolerance::reverse_tolerance_ulps;
+use serde::Serialize;
+
+/// Default step, in periods of the scene.
+pub const DEFAULT_STEP: f64 = 1.0 / 100.0;
+
+/// Default number of steps each way: ten periods at the default step.
+pub const DEFAULT_STEPS: u64 = 1000;
+
+/// What to measure.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct ReverseSpec {
+    /// The step; `None` for [`DEFAULT_STEP`] periods.
+    pub h: Option<f64>,
+    /// Steps each way; `None` for [`DEFAULT_STEPS`].
+    pub steps: Option<u64>,
+}
+
+/// What the reversibility study found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReverseRecord {
+    /// Scheme id.
+    pub scheme: &'static str,
+    /// Scene id.
+    pub scene: &'static str,
+    /// The step of the round trip judged: the one asked for, or a halving
+    /// of it when a claimed-symmetric trip blew up at the larger steps.
+    pub h: f64,
+    /// Steps each way.
+    pub steps: u64,
+    /// How the round trip ended.
+    pub outcome: Outcome,
+    /// Phase-space distance from the start after the round trip (length
+    /// units); `None` if it blew up.
+    pub return_error: Option<f64>,
+    /// The same in units of `eps * scale`, the rounding unit of the motion.
+    pub return_ulps: Option<f64>,
+    /// How much the run magnifies a small perturbation of its start (1 when
+    /// it does not): round-off made along the way is magnified alike.
+    pub growth: f64,
+    /// Largest return, in those units, that counts as round-off.
+    pub tolerance_ulps: f64,
+    /// The return is within round-off.
+    pub measured: bool,
+    /// The scheme claims to be time-symmetric.
+    pub claimed: bool,
+    /// Claim and measurement agree.
+    pub verdict: Verdict,
+    /// Why, in one line.
+    pub reason: String,
+}
+
+/// Runs the round trip.
+pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    spec: &ReverseSpec,
+) -> Result<ReverseRecord, Error> {
+    let h = match spec.h {
+        Some(h) => crate::scene::positive("h", h)?,
+        None => DEFAULT_STEP * scene.period(),
+    };
+    let steps = spec.steps.unwrap_or(DEFAULT_STEPS);
+    if steps == 0 {
+        return Err(Error::InvalidParameter {
+            name: "steps",
+            value: 0.0,
+            expected: "at least 1",
+        });
+    }
+    check_cost(steps.saturating_mul(2))?;
+    let start = scene.initial();
+    let meta = scheme.meta();
+    // A time-symmetric scheme returns from every step at which it is stable
+    // (and its implicit stages solvable); a blow-up at the first step says
+    // nothing about symmetry. So a claimed-symmetric round trip that blows
+    // up is repeated with the step halved, the number of steps kept, up to
+    // MAX_HALVINGS times: the symmetry is a property of each step, and a
+    // defect that is invisible only because the run blew up shows at the
+    // first completed round trip.
+    let mut h = h;
+    let mut halvings = 0;
+    let (there, back, outcome) = loop {
+        let (there, back, outcome) = round_trip(scheme, scene, &start, h, steps);
+        if outcome.completed() || !meta.symmetric || halvings == MAX_HALVINGS {
+            break (there, back, outcome);
+        }
+        h /= 2.0;
+        halvings += 1;
+    };
+    let scale = scene.scale();
+    let return_error = outcome
+        .completed()
+        .then(|| scene.phase_distance(&back, &start));
+    let return_ulps = return_error.map(|e| e / (scheme.epsilon() * scale));
+    let growth = perturbation_growth(scheme, scene, &there, h, steps);
+    let tolerance_ulps = reverse_tolerance_ulps(steps, growth);
+    let measured = return_ulps.is_some_and(|u| u <= tolerance_ulps);
+    let halved = if halvings > 0 {
+        format!(
+            " at h = {}, the round trip having blown up at {}",
+            figure(h),
+            if halvings > 1 {
+                format!("each of the {halvings} coarser steps")
+            } else {
+                "twice that step".to_string()
+            }
+        )
+    } else {
+        String::new()
+    };
+    let (verdict, reason) = judge(
+        return_ulps,
+        meta.symmetric,
+        Allowance {
+            ulps: tolerance_ulps,
+            steps,
+            growth,
+        },
+        h,
+        &halved,
+        &outcome,
+    );
+    Ok(ReverseRecord {
+        scheme: meta.id,
+        scene: scene.meta().id,
+        h,
+        steps,
+        outcome,
+        return_error,
+        return_ulps,
+        growth,
+        tolerance_ulps,
+        measured,
+        claimed: meta.symmetric,
+        verdict,
+        reason,
+    })
+}
+
+/// The round-off a round trip may return with, and what it is made of
+/// (see [`reverse_tolerance_ulps`]).
+struct Allowance {
+    ulps: f64,
+    steps: u64,
+    growth: f64,
+}
+
+/// The verdict on a symmetry claim from the return error in ulps (`None`
+/// when the round trip blew up). A claim of time symmetry is refuted by one
+/// round trip that does not return; a claim that the scheme is not
+/// symmetric promises nothing.
+fn judge(
+    return_ulps: Option<f64>,
+    claimed_symmetric: bool,
+    allowance: Allowance,
+    h: f64,
+    halved: &str,
+    outcome: &Outcome,
+) -> (Verdict, String) {
+    let measured = return_ulps.is_some_and(|u| u <= allowance.ulps);
+    let (steps, growth) = (allowance.steps as f64, allowance.growth.max(1.0));
+    match (return_ulps, claimed_symmetric) {
+        (None, true) => (
+            Verdict::Inconclusive,
+            format!(
+                "the round trip did not complete ({}) at any step down to h = {} ({MAX_HALVINGS} halvings): a \
+                 time-symmetric scheme returns only from stable steps; take a smaller step \
+                 (ReverseSpec::h)",
+                outcome.brief(),
+                figure(h)
+            ),
+        ),
+        (None, false) => (
+            Verdict::Pass,
+            format!(
+                "the round trip did not complete ({}): not time-symmetric, as claimed",
+                outcome.brief()
+            ),
+        ),
+        (Some(u), claimed) => {
+            let found = format!(
+                "return error in units of eps x scale {} ({} a step over {} steps there and \
+                 back, magnified {} times by the flow){halved}",
+                vs_upper(u, "allowance", allowance.ulps),
+                figure(allowance.ulps / (2.0 * steps * growth)),
+                2 * allowance.steps,
+                figure(growth),
+            );
+            match (claimed, measured) {
+                (true, true) => (
+                    Verdict::Pass,
+                    format!("{found}: time-symmetric, as claimed"),
+                ),
+                (true, false) => (
+                    Verdict::Fail,
+                    format!("{found}: not time-symmetric, though claimed"),
+                ),
+                (false, false) => (
+                    Verdict::Pass,
+                    format!("{found}: not time-symmetric, as claimed"),
+                ),
+                (false, true) => (
+                    Verdict::Pass,
+                    format!(
+                        "{found}: time-symmetric on this scene, which does not refute the claim \
+                     that the scheme is not"
+                    ),
+                ),
+            }
+        }
+    }
+}
+
+/// `steps` steps with `h` from `start`, then as many with `-h` from where
+/// they ended: the end state, the state returned to and how the trip ended.
+fn round_trip<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    start: &State<D>,
+    h: f64,
+    steps: u64,
+) -> (State<D>, State<D>, Outcome) {
+    let mut there = *start;
+    let mut outcome = integrate(scheme, scene, start, h, steps, |_, _, s| there = *s);
+    let mut back = there;
+    if outcome.completed() {
+        outcome = integrate(scheme, scene, &there, -h, steps, |_, _, s| back = *s);
+    }
+    (there, back, outcome)
+}
+
+/// How much `steps` steps magnify a small perturbation of the start: the
+/// phase-space distance between the runs from `s0` and from `s0` moved by
+/// 1e-7 of the scene's size (along every coordinate alike, in the scaled
+/// coordinates `(q, v/w)`), over that displacement. Shear near a Kepler
+/// pericentre magnifies errors by tens to hundreds over ten periods, and the
+/// round-off a symmetric scheme makes on the way out is magnified alike.
+fn perturbation_growth<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    end: &State<D>,
+    h: f64,
+    steps: u64,
+) -> f64 {
+    let start = scene.initial();
+    let size = 1e-7 * scene.scale();
+    let unit = size / ((2 * D) as f64).sqrt();
+    let mut moved = start;
+    moved.q.iter_mut().for_each(|x| *x += unit);
+    moved
+        .v
+        .iter_mut()
+        .for_each(|x| *x += unit * scene.frequency());
+    let displacement = scene.phase_distance(&moved, &start);
+    let mut there = moved;
+    let outcome = integrate(scheme, scene, &moved, h, steps, |_, _, s| there = *s);
+    if !outcome.completed() {
+        return 1.0;
+    }
+    (scene.phase_distance(&there, end) / displacement).max(1.0)
+}

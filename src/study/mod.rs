@@ -1,0 +1,104 @@
+//! The studies, each a function from a scheme (or an adaptive integrator)
+//! and a scene to a record: plain serde data with a verdict and the figures
+//! that decided it. Every study sits here under one name, beside its spec
+//! (what to run) and its record (what was measured):
+//!
+//! | question | study | spec | record |
+//! |---|---|---|---|
+//! | global order, with a 95% interval | [`global_order`] | [`OrderSpec`] | [`OrderRecord`] |
+//! | phase error on the oscillator | [`phase_error`] | | [`PhaseRecord`] |
+//! | energy over long runs | [`energy_drift`] | [`EnergySpec`] | [`EnergyRecord`] |
+//! | symplecticity of the tangent map | [`symplecticity`] | [`SymplecticSpec`] | [`SymplecticRecord`] |
+//! | time reversibility | [`reversibility`] | [`ReverseSpec`] | [`ReverseRecord`] |
+//! | linear stability interval | [`fn@stability`] | | [`StabilityRecord`] |
+//! | force evaluations a step | [`evaluations`] | | [`EvaluationRecord`] |
+//! | round-off floor | [`roundoff`] | [`RoundoffSpec`] | [`RoundoffRecord`] |
+//! | round-off growth over long runs | [`longrun`] | [`LongrunSpec`] | [`LongrunRecord`] |
+//! | orders on eccentric orbits | [`eccentric_order`] | | [`EccentricOrderRecord`] |
+//! | energy on eccentric orbits | [`eccentric_energy`] | | [`EccentricEnergyRecord`] |
+//! | following the separatrix | [`following`] | [`WellSpec`] | [`FollowingRecord`] |
+//! | escape or trapped near the barrier | [`escape_or_trapped`] | [`EscapeSpec`] | [`EscapeRecord`] |
+//! | time per step | [`speed`] | | [`SpeedRecord`] |
+//! | force evaluations against error | [`scheme_work`] | | [`SchemeWork`] |
+//! | an adaptive integrator over tolerances | [`tolerance_ladder()`] | [`ToleranceLadderSpec`] | [`ToleranceLadderRecord`] |
+//! | a scene's exact solution | [`check_scene`] | | [`SceneCheck`] |
+//!
+//! and the pins, which hold a coarse-step error to its round-off between
+//! versions: [`check_pin`] and [`check_adaptive_pin`].
+
+#[doc(hidden)]
+pub mod accuracy;
+#[doc(hidden)]
+pub mod adaptive;
+#[doc(hidden)]
+pub mod case;
+#[doc(hidden)]
+pub mod cost;
+#[doc(hidden)]
+pub mod geometry;
+#[doc(hidden)]
+pub mod hard;
+#[doc(hidden)]
+pub mod round_off;
+#[doc(hidden)]
+pub mod stability;
+#[doc(hidden)]
+pub mod wording;
+
+pub use accuracy::order::{
+    DropReason, OrderRecord, OrderReduction, OrderSpec, Reference, Rung, global_order,
+};
+pub use accuracy::phase::{PhaseRecord, phase_error};
+pub use accuracy::pin::{Pin, PinOutcome, check_pin};
+pub use accuracy::scene_check::{SceneCheck, check_scene};
+pub use adaptive::{
+    AdaptiveBlackBox, AdaptiveClaim, AdaptiveClaims, AdaptiveIntegrator, AdaptivePin,
+    AdaptivePinOutcome, AdaptiveRun, Advance, AdvanceFn, Controller, DPRKN6_ADAPTIVE,
+    DPRKN8_ADAPTIVE, EmbeddedPair, JudgedClaim, RunEnd, ToleranceLadderRecord, ToleranceLadderSpec,
+    TolerancePoint, check_adaptive_pin, tolerance_ladder,
+};
+pub use cost::evaluations::{EvaluationRecord, evaluations};
+pub use cost::step_time::{SpeedRecord, speed};
+pub use cost::work_points::{SchemeWork, scheme_work};
+pub use geometry::energy::{EnergyClass, EnergyRecord, EnergySpec, energy_drift};
+pub use geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
+pub use geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+pub use hard::eccentric::{
+    EccentricEnergyRecord, EccentricOrderRecord, eccentric_energy, eccentric_order,
+};
+pub use hard::escape::{EscapeRecord, EscapeSpec, escape_or_trapped};
+pub use hard::following::{FollowingRecord, WellSpec, following};
+pub use round_off::floor::{RoundoffRecord, RoundoffSpec, roundoff};
+pub use round_off::longrun::{LongrunRecord, LongrunSpec, longrun};
+pub use stability::{StabilityRecord, stability};
+
+use serde::Serialize;
+
+/// Does the measurement agree with the claim?
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    /// The measurement agrees with the claim.
+    Pass,
+    /// It refutes the claim.
+    Fail,
+    /// The data cannot decide; the record says why and what to change.
+    /// Guards treat it as a failure unless told otherwise.
+    Inconclusive,
+}
+
+impl Verdict {
+    /// `Pass` when `ok`.
+    pub fn from_bool(ok: bool) -> Self {
+        if ok { Verdict::Pass } else { Verdict::Fail }
+    }
+
+    /// The kebab-case name used in records and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Pass => "pass",
+            Verdict::Fail => "fail",
+            Verdict::Inconclusive => "inconclusive",
+        }
+    }
+}

@@ -1,0 +1,90 @@
+//! The crate docs and the README describe the catalogue as it is: every
+//! scheme in `scheme::catalogue()` has a row in both, with its claimed
+//! order (and, in the README, its geometry and force evaluations), and no
+//! row names a scheme that is not there. A scheme added, removed or
+//! re-claimed without its documentation fails here.
+
+use stepladder::scheme::{SchemeMeta, catalogue};
+
+/// The rows of the first Markdown table whose header starts with `| id |`
+/// in `text`, split into trimmed cells, the id's backticks removed.
+fn catalogue_rows(text: &str) -> Vec<Vec<String>> {
+    let lines: Vec<&str> = text.lines().collect();
+    let start = lines
+        .iter()
+        .position(|l| l.trim_start().starts_with("| id |"))
+        .expect("a catalogue table");
+    lines[start + 2..]
+        .iter()
+        .take_while(|l| l.trim_start().starts_with('|'))
+        .map(|l| {
+            l.trim()
+                .trim_matches('|')
+                .split('|')
+                .map(|c| c.trim().trim_matches('`').to_string())
+                .collect()
+        })
+        .collect()
+}
+
+fn yes_no(b: bool) -> &'static str {
+    if b { "yes" } else { "no" }
+}
+
+fn assert_same_ids(rows: &[Vec<String>], where_: &str) {
+    let documented: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
+    let ids: Vec<&str> = catalogue().iter().map(|m| m.id).collect();
+    assert_eq!(
+        documented, ids,
+        "{where_}'s catalogue table lists other schemes (or in another order) than the catalogue"
+    );
+}
+
+#[test]
+fn the_readme_catalogue_table_is_the_catalogue() {
+    let readme = include_str!("../README.md");
+    let rows = catalogue_rows(readme);
+    assert_same_ids(&rows, "README.md");
+    for (row, meta) in rows.iter().zip(catalogue()) {
+        let SchemeMeta {
+            order,
+            symplectic,
+            symmetric,
+            ..
+        } = *meta;
+        let expected = [
+            order.to_string(),
+            yes_no(symplectic).to_string(),
+            yes_no(symmetric).to_string(),
+            meta.forces_label(),
+        ];
+        assert_eq!(&row[2..6], &expected, "README.md row of {}", meta.id);
+    }
+}
+
+#[test]
+fn the_crate_docs_catalogue_table_is_the_catalogue() {
+    let docs: String = include_str!("../src/lib.rs")
+        .lines()
+        .filter_map(|l| l.strip_prefix("//!"))
+        .map(|l| format!("{}\n", l.trim_start()))
+        .collect();
+    let rows = catalogue_rows(&docs);
+    assert_same_ids(&rows, "the crate docs");
+    for (row, meta) in rows.iter().zip(catalogue()) {
+        assert_eq!(
+            row[1],
+            meta.order.to_string(),
+            "crate docs row of {}",
+            meta.id
+        );
+    }
+}
+
+#[test]
+fn the_table_reader_sees_a_wrong_row() {
+    let text = "| id | order | family |\n|---|---|---|\n| `euler` | 2 | explicit Euler |\n";
+    let rows = catalogue_rows(text);
+    assert_eq!(rows, vec![vec!["euler", "2", "explicit Euler"]]);
+    assert_ne!(rows[0][1], catalogue()[0].order.to_string());
+}
