@@ -370,6 +370,13 @@ fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
         .unwrap_or_else(|| report::figures::beside(&args.output));
     let written = report::figures::write_figures(&dir, &records)?;
     eprintln!("{} figures written to {}", written.len(), dir.display());
+    let pages = report::pages::beside(&args.output);
+    let written = report::pages::write_pages(&pages, &records)?;
+    eprintln!(
+        "{} detail pages written to {}",
+        written.len(),
+        pages.display()
+    );
     print!("{}", report::order_table(&records.order()));
     println!();
     print!("{}", report::geometry_table(&records.cases));

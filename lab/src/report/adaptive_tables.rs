@@ -23,11 +23,7 @@ pub fn adaptive_section(records: &AdaptiveRecords) -> String {
     let mut out = String::from("\n## Adaptive step control\n\n");
     out.push_str(&method());
     out.push_str(&summary_table(&records.ladders));
-    out.push_str("\n### Every tolerance\n\n");
-    for r in &records.ladders {
-        let _ = writeln!(out, "\n#### {} on `{}`\n", r.integrator, r.scene);
-        out.push_str(&ladder_table(r));
-    }
+    out.push_str("\nEvery tolerance is on [a detail page](details/adaptive-tolerances.md).\n");
     out
 }
 

@@ -5,255 +5,281 @@
 //! time), so the committed copies can be checked for staleness like the
 //! report. Nothing is computed here beyond choosing axes.
 
+use super::plot::{Panel, Point, Series, colour, drawing, log_log_panels};
 use crate::suite::SuiteRecords;
 use crate::suite::work_precision::WorkRecord;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use stepladder::error::Error;
+use stepladder::study::ToleranceLadderRecord;
 use stepladder::study::accuracy::order::OrderRecord;
 use stepladder::study::accuracy::trajectory::TrajectoryRecord;
 use stepladder::study::geometry::energy::EnergyRecord;
 use stepladder::study::stability::StabilityRecord;
 
-const SIZE: (u32, u32) = (900, 560);
+/// The catalogue in panels of at most [`super::plot::MAX_SERIES`] schemes, by family,
+/// so that every series of a panel has a colour and a marker of its own.
+pub const FAMILIES: [(&str, &[&str]); 3] = [
+    (
+        "first and second order",
+        &[
+            "euler",
+            "euler-cromer",
+            "stormer-verlet",
+            "leapfrog",
+            "velocity-verlet",
+            "position-verlet",
+            "implicit-midpoint",
+        ],
+    ),
+    (
+        "splittings and compositions",
+        &[
+            "forest-ruth",
+            "pefrl",
+            "mclachlan-sb3a4",
+            "mclachlan-sb3a5",
+            "yoshida6",
+            "kahan-li8",
+        ],
+    ),
+    (
+        "Nyström splittings and Runge-Kutta",
+        &[
+            "rk4",
+            "rkn4-nystrom",
+            "mclachlan-atela4",
+            "blanes-moan-srkn11b",
+            "rkn6-dormand-prince",
+        ],
+    ),
+];
 
-/// A distinct colour for the `i`-th series.
-fn colour(i: usize) -> RGBColor {
-    const PALETTE: [RGBColor; 13] = [
-        RGBColor(31, 119, 180),
-        RGBColor(255, 127, 14),
-        RGBColor(44, 160, 44),
-        RGBColor(214, 39, 40),
-        RGBColor(148, 103, 189),
-        RGBColor(140, 86, 75),
-        RGBColor(227, 119, 194),
-        RGBColor(127, 127, 127),
-        RGBColor(188, 189, 34),
-        RGBColor(23, 190, 207),
-        RGBColor(0, 0, 128),
-        RGBColor(128, 0, 0),
-        RGBColor(0, 100, 0),
-    ];
-    PALETTE[i % PALETTE.len()]
-}
-
-/// The plotting library's error as text: figures are best effort for the
-/// caller, who reports a failure as an I/O problem of the figure file.
-fn drawing<E: std::fmt::Debug>(e: E) -> std::io::Error {
-    std::io::Error::other(format!("{e:?}"))
-}
-
-/// Log-log lines `(x, y)` with a legend; non-positive points are skipped.
-fn log_log(
-    title: &str,
-    x_desc: &str,
-    y_desc: &str,
-    series: &[(String, Vec<(f64, f64)>)],
-    legend: SeriesLabelPosition,
-) -> Result<String, std::io::Error> {
-    let points = series
+/// One panel per family of the series `of` gives for each scheme (in the
+/// family's order; a scheme without a series is left out).
+fn family_panels(of: impl Fn(&str) -> Option<Series>) -> Vec<Panel> {
+    FAMILIES
         .iter()
-        .flat_map(|(_, p)| p)
-        .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite());
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for &(x, y) in points {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    if x0 >= x1 || y0 >= y1 {
-        (x0, x1, y0, y1) = (1e-3, 1.0, 1e-3, 1.0);
-    }
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(drawing)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 20))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
-            .build_cartesian_2d(
-                (x0 / 1.5..x1 * 1.5).log_scale(),
-                (y0 / 3.0..y1 * 3.0).log_scale(),
-            )
-            .map_err(drawing)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_desc)
-            .y_desc(y_desc)
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
-            .draw()
-            .map_err(drawing)?;
-        for (i, (name, pts)) in series.iter().enumerate() {
-            let c = colour(i);
-            let good: Vec<(f64, f64)> = pts
-                .iter()
-                .copied()
-                .filter(|(x, y)| *x > 0.0 && *y > 0.0)
-                .collect();
-            chart
-                .draw_series(LineSeries::new(good, c.stroke_width(2)))
-                .map_err(drawing)?
-                .label(name.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2))
-                });
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(legend)
-            .draw()
-            .map_err(drawing)?;
-        root.present().map_err(drawing)?;
-    }
-    Ok(svg)
-}
-
-/// Error against step for every scheme on one scene.
-pub fn convergence(scene: &str, records: &[&OrderRecord]) -> Result<String, std::io::Error> {
-    let series: Vec<(String, Vec<(f64, f64)>)> = records
-        .iter()
-        .filter(|r| r.scene == scene)
-        .map(|r| {
-            (
-                match r.measured_order {
-                    Some(p) => format!("{} (fitted p = {p:.2})", r.scheme),
-                    None => format!("{} (no fit)", r.scheme),
-                },
-                r.rungs
-                    .iter()
-                    .filter_map(|g| Some((g.h, g.error?)))
-                    .collect(),
-            )
+        .map(|(family, ids)| Panel {
+            title: family.to_string(),
+            series: ids.iter().filter_map(|id| of(id)).collect(),
         })
-        .collect();
-    log_log(
-        &format!("global error against step: {scene}"),
+        .collect()
+}
+
+/// Error against step for every scheme on one scene, a panel a family; the
+/// rungs of the fitted window are solid, the others faded.
+pub fn convergence(scene: &str, records: &[&OrderRecord]) -> Result<String, std::io::Error> {
+    let panels = family_panels(|id| {
+        let r = records
+            .iter()
+            .find(|r| r.scene == scene && r.scheme == id)?;
+        Some(Series {
+            name: match r.measured_order {
+                Some(p) => format!("{id} (p = {p:.2})"),
+                None => format!("{id} (no fit)"),
+            },
+            points: r
+                .rungs
+                .iter()
+                .filter_map(|g| {
+                    Some(Point {
+                        x: g.h,
+                        y: g.error?,
+                        used: g.used,
+                    })
+                })
+                .collect(),
+        })
+    });
+    log_log_panels(
+        &format!("global error against step, {scene} (solid markers: the fitted window)"),
         "h",
         "max phase-space error",
-        &series,
-        // errors fall to the right: small steps with large errors never occur
-        SeriesLabelPosition::UpperLeft,
+        &panels,
     )
 }
 
 /// Work against precision on one scene: the largest global error each
-/// scheme (and the peer, over its tolerances) reaches against the force
-/// evaluations it spends, both axes logarithmic.
-pub fn work_precision(work: &WorkRecord) -> Result<String, std::io::Error> {
-    let mut series: Vec<(String, Vec<(f64, f64)>)> = work
-        .schemes
+/// scheme reaches against the force evaluations it spends, a panel a family,
+/// and the adaptive integrators (the crate's pairs over their tolerance
+/// ladders, the peer over its tolerances) in a panel of their own.
+pub fn work_precision(
+    work: &WorkRecord,
+    adaptive: &[ToleranceLadderRecord],
+) -> Result<String, std::io::Error> {
+    let mut panels = family_panels(|id| {
+        let w = work.schemes.iter().find(|w| w.scheme == id)?;
+        Some(Series::plain(
+            id,
+            w.global
+                .iter()
+                .filter_map(|p| Some((p.evaluations as f64, p.error?))),
+        ))
+    });
+    let mut adaptive_series: Vec<Series> = adaptive
         .iter()
-        .map(|w| {
-            (
-                w.scheme.to_string(),
-                w.global
+        .filter(|r| r.scene == work.scene)
+        .map(|r| {
+            Series::plain(
+                r.integrator,
+                r.points
                     .iter()
-                    .filter_map(|p| Some((p.evaluations as f64, p.error?)))
-                    .collect(),
+                    .filter_map(|p| Some((p.evaluations as f64, p.error?))),
             )
         })
         .collect();
-    if let Some(peer) = &work.peer {
-        series.push((
-            format!("{} (adaptive)", peer.peer),
+    // the peer's own tolerance ladder, when the suite ran one, is already there
+    if let Some(peer) = work
+        .peer
+        .as_ref()
+        .filter(|p| !adaptive.iter().any(|r| r.integrator == p.peer))
+    {
+        adaptive_series.push(Series::plain(
+            format!("{} (peer)", peer.peer),
             peer.global
                 .iter()
-                .filter_map(|p| Some((p.evaluations as f64, p.error?)))
-                .collect(),
+                .filter_map(|p| Some((p.evaluations as f64, p.error?))),
         ));
     }
-    log_log(
-        &format!("work against precision: {}", work.scene),
+    panels.push(Panel {
+        title: "adaptive".to_string(),
+        series: adaptive_series,
+    });
+    log_log_panels(
+        &format!("work against precision, {}", work.scene),
         "force evaluations",
         "max phase-space error",
-        &series,
-        // much work for a large error never occurs
-        SeriesLabelPosition::UpperRight,
+        &panels,
     )
 }
 
-/// Running maximum of the relative energy error against time, one scene.
+/// Running maximum of the relative energy error against time, one scene, a
+/// panel a family.
 pub fn energy(scene: &str, records: &[&EnergyRecord]) -> Result<String, std::io::Error> {
-    let series: Vec<(String, Vec<(f64, f64)>)> = records
-        .iter()
-        .filter(|r| r.scene == scene)
-        .map(|r| {
-            (
-                r.scheme.to_string(),
-                r.samples.iter().map(|&[t, m]| (t, m)).collect(),
-            )
-        })
-        .collect();
-    log_log(
-        &format!("energy error over 10^4 periods: {scene}"),
+    let panels = family_panels(|id| {
+        let r = records
+            .iter()
+            .find(|r| r.scene == scene && r.scheme == id)?;
+        Some(Series::plain(id, r.samples.iter().map(|&[t, m]| (t, m))))
+    });
+    log_log_panels(
+        &format!("energy error over 10^4 periods, {scene}"),
         "t",
         "max |E - E0| / |E0| so far",
-        &series,
-        SeriesLabelPosition::LowerLeft,
+        &panels,
     )
 }
 
-/// The stability limit per force evaluation, one bar per scheme; where there
-/// is no bar, a word says whether the scheme is stable at every step (`no
-/// limit`) or at none (`0`).
+/// The stability limit per force evaluation, one horizontal bar per scheme
+/// (names stay readable however many there are). A scheme stable at every
+/// step has no finite bar: an arrow runs past every bar, marked "unbounded";
+/// one stable at no step draws a cross on zero, marked "0 (unstable at
+/// every step)", so neither is mistaken for the other or for a short bar.
 pub fn stability(records: &[StabilityRecord]) -> Result<String, std::io::Error> {
-    let bars: Vec<(&str, f64)> = records
+    let finite = records
         .iter()
-        .map(|r| (r.scheme, r.limit_per_force_evaluation.unwrap_or(f64::NAN)))
-        .collect();
-    let top = bars
-        .iter()
-        .map(|b| b.1)
-        .filter(|v| v.is_finite())
-        .fold(1.0, f64::max)
-        * 1.15;
+        .filter_map(|r| r.limit_per_force_evaluation)
+        .fold(1.0, f64::max);
+    // room to the right of the longest bar for the arrow of an unbounded
+    // interval and its label, so that neither touches a bar
+    let top = finite * 1.9;
+    let rows = records.len();
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        let size = (900, 80 + 28 * rows as u32);
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
-                "linear stability limit per force evaluation (h w0)",
+                "linear stability limit per force evaluation (h w0 / evaluations)",
                 ("sans-serif", 20),
             )
             .margin(12)
-            .x_label_area_size(90)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0..bars.len(), 0.0..top)
+            .x_label_area_size(40)
+            .y_label_area_size(170)
+            .build_cartesian_2d(0.0..top, (0..rows).into_segmented())
             .map_err(drawing)?;
         chart
             .configure_mesh()
-            .disable_x_mesh()
-            .x_labels(bars.len())
-            .x_label_formatter(&|i| bars.get(*i).map_or(String::new(), |b| b.0.to_string()))
-            .y_desc("stable h w0 per evaluation")
+            .disable_y_mesh()
+            .y_labels(rows)
+            .y_label_formatter(&|y| match y {
+                SegmentValue::CenterOf(i) => rows
+                    .checked_sub(i + 1)
+                    .and_then(|k| records.get(k))
+                    .map_or(String::new(), |r| r.scheme.to_string()),
+                _ => String::new(),
+            })
+            .x_desc("largest stable h w0 per force evaluation")
             .draw()
             .map_err(drawing)?;
-        chart
-            .draw_series(
-                bars.iter()
-                    .enumerate()
-                    .filter(|(_, b)| b.1.is_finite())
-                    .map(|(i, b)| Rectangle::new([(i, 0.0), (i + 1, b.1)], colour(i).filled())),
-            )
-            .map_err(drawing)?;
-        // no bar for two opposite reasons: say which
-        chart
-            .draw_series(bars.iter().enumerate().filter_map(|(i, b)| {
-                let word = if b.1.is_nan() {
-                    "no limit"
-                } else if b.1 == 0.0 {
-                    "0"
-                } else {
-                    return None;
-                };
-                Some(Text::new(word, (i, 0.02 * top), ("sans-serif", 11)))
-            }))
-            .map_err(drawing)?;
+        // the catalogue reads from the top down
+        let row = |k: usize| rows - 1 - k;
+        let at = |k: usize| SegmentValue::CenterOf(row(k));
+        for (i, r) in records.iter().enumerate() {
+            let c = colour(0);
+            match r.limit_per_force_evaluation {
+                Some(v) if v > 0.0 => {
+                    chart
+                        .draw_series(std::iter::once(Rectangle::new(
+                            [
+                                (0.0, SegmentValue::Exact(row(i))),
+                                (v, SegmentValue::Exact(row(i) + 1)),
+                            ],
+                            colour(5).mix(0.8).filled(),
+                        )))
+                        .map_err(drawing)?;
+                    chart
+                        .draw_series(std::iter::once(Text::new(
+                            format!("{v:.3}"),
+                            (v + 0.01 * top, at(i)),
+                            ("sans-serif", 12).into_font().color(&c),
+                        )))
+                        .map_err(drawing)?;
+                }
+                Some(_) => {
+                    chart
+                        .draw_series(std::iter::once(
+                            EmptyElement::at((0.0, at(i)))
+                                + PathElement::new(
+                                    vec![(-5, -5), (5, 5)],
+                                    colour(6).stroke_width(2),
+                                )
+                                + PathElement::new(
+                                    vec![(-5, 5), (5, -5)],
+                                    colour(6).stroke_width(2),
+                                )
+                                + Text::new(
+                                    "0 (unstable at every step)",
+                                    (10, -6),
+                                    ("sans-serif", 12).into_font().color(&colour(6)),
+                                ),
+                        ))
+                        .map_err(drawing)?;
+                }
+                None => {
+                    chart
+                        .draw_series(std::iter::once(PathElement::new(
+                            vec![(0.0, at(i)), (finite * 1.15, at(i))],
+                            colour(3).stroke_width(3),
+                        )))
+                        .map_err(drawing)?;
+                    chart
+                        .draw_series(std::iter::once(
+                            EmptyElement::at((finite * 1.15, at(i)))
+                                + Polygon::new(vec![(0, -6), (10, 0), (0, 6)], colour(3).filled())
+                                + Text::new(
+                                    "unbounded (stable at every step)",
+                                    (16, -6),
+                                    ("sans-serif", 12).into_font().color(&colour(3)),
+                                ),
+                        ))
+                        .map_err(drawing)?;
+                }
+            }
+        }
         root.present().map_err(drawing)?;
     }
     Ok(svg)
@@ -308,24 +334,26 @@ pub fn earth_sun_orbit(runs: &[TrajectoryRecord]) -> Result<String, std::io::Err
 
 /// The Earth-Sun relative energy error against time, log scale.
 pub fn earth_sun_energy(runs: &[TrajectoryRecord]) -> Result<String, std::io::Error> {
-    let series: Vec<(String, Vec<(f64, f64)>)> = runs
+    let series: Vec<Series> = runs
         .iter()
         .map(|r| {
-            let pts = r
-                .times
-                .iter()
-                .zip(&r.relative_energy_error)
-                .map(|(&t, &e)| (t, e.abs()))
-                .collect();
-            (format!("{} (dt = {})", r.scheme, r.h), pts)
+            Series::plain(
+                format!("{} (dt = {})", r.scheme, r.h),
+                r.times
+                    .iter()
+                    .zip(&r.relative_energy_error)
+                    .map(|(&t, &e)| (t, e.abs())),
+            )
         })
         .collect();
-    log_log(
+    log_log_panels(
         "Earth-Sun, 10 years: |E - E0| / |E0|",
         "t (years)",
         "relative energy error",
-        &series,
-        SeriesLabelPosition::LowerRight,
+        &[Panel {
+            title: String::new(),
+            series,
+        }],
     )
 }
 
@@ -344,7 +372,10 @@ pub fn deterministic_figures(records: &SuiteRecords) -> Result<Vec<(String, Stri
         figures.push((format!("energy-{scene}.svg"), energy(scene, &energies)));
     }
     for w in &records.work {
-        figures.push((format!("work-{}.svg", w.scene), work_precision(w)));
+        figures.push((
+            format!("work-{}.svg", w.scene),
+            work_precision(w, &records.adaptive.ladders),
+        ));
     }
     figures.push(("stability.svg".into(), stability(&records.stability)));
     figures.push((

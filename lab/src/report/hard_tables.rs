@@ -308,10 +308,7 @@ fn separatrix_section(hard: &HardCases) -> String {
         1.0 / (2.0 * lambda),
     );
     out.push_str(&following_table(&hard.following));
-    out.push_str("\nEvery rung:\n\n");
-    for r in &hard.following {
-        out.push_str(&following_rungs(r));
-    }
+    out.push_str("\nEvery rung is on [a detail page](details/separatrix-rungs.md).\n");
     out
 }
 

@@ -63,6 +63,70 @@ pub fn yes_no(b: bool) -> &'static str {
     if b { "yes" } else { "no" }
 }
 
+/// The widest prose line the report writes; tables keep the width they need.
+pub const PROSE_WIDTH: usize = 100;
+
+/// `text` with every paragraph and list item wrapped at [`PROSE_WIDTH`]
+/// columns (a list item's continuation lines indented under its text), and
+/// every other line (tables, headings, HTML, code blocks, blank lines) left
+/// as it is. Markdown renders the wrapped text identically.
+pub fn wrap_prose(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + text.len() / 50);
+    let mut in_code = false;
+    for line in text.split_inclusive('\n') {
+        let (body, end) = match line.strip_suffix('\n') {
+            Some(b) => (b, "\n"),
+            None => (line, ""),
+        };
+        let trimmed = body.trim_start();
+        if trimmed.starts_with("```") {
+            in_code = !in_code;
+        }
+        let kept = in_code
+            || trimmed.starts_with("```")
+            || body.chars().count() <= PROSE_WIDTH
+            || trimmed.starts_with('|')
+            || trimmed.starts_with('#')
+            || trimmed.starts_with('<')
+            || body.starts_with("    ");
+        if kept {
+            out.push_str(line);
+            continue;
+        }
+        let indent = list_indent(body);
+        let mut width = 0;
+        for (i, word) in body.split(' ').filter(|w| !w.is_empty()).enumerate() {
+            let w = word.chars().count();
+            if i > 0 && width + 1 + w > PROSE_WIDTH {
+                out.push('\n');
+                out.push_str(&" ".repeat(indent));
+                width = indent;
+            } else if i > 0 {
+                out.push(' ');
+                width += 1;
+            }
+            out.push_str(word);
+            width += w;
+        }
+        out.push_str(end);
+    }
+    out
+}
+
+/// The indent of a list item's continuation lines: under the item's text.
+fn list_indent(line: &str) -> usize {
+    let lead = line.len() - line.trim_start().len();
+    let rest = &line[lead..];
+    if rest.starts_with("- ") || rest.starts_with("* ") {
+        return lead + 2;
+    }
+    let digits = rest.chars().take_while(char::is_ascii_digit).count();
+    if digits > 0 && rest[digits..].starts_with(". ") {
+        return lead + digits + 2;
+    }
+    lead
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -78,5 +142,39 @@ mod tests {
         );
         assert_eq!(sci(0.000123456), "1.23e-4");
         assert_eq!(order(1.99949), "1.999");
+    }
+}
+
+#[cfg(test)]
+mod wrap_tests {
+    use super::*;
+
+    #[test]
+    fn prose_is_wrapped_and_tables_are_not() {
+        let long = "word ".repeat(60);
+        let table = format!("| {} |\n", "cell ".repeat(40));
+        let text = format!("{long}\n\n- {long}\n{table}```\n{long}\n```\n");
+        let wrapped = wrap_prose(&text);
+        let fenced = format!("```\n{long}\n```\n");
+        assert!(wrapped.contains(&fenced), "a code block is kept whole");
+        let outside = wrapped.replace(&fenced, "").replace(&table, "");
+        for l in outside.lines() {
+            assert!(l.chars().count() <= PROSE_WIDTH, "{l}");
+        }
+        assert!(wrapped.contains(&table), "the table is kept whole");
+        // the words survive, in order
+        let words = |s: &str| s.split_whitespace().map(str::to_string).collect::<Vec<_>>();
+        assert_eq!(words(&wrapped), words(&text));
+        // a list item's continuation sits under its text
+        let item = wrapped.lines().find(|l| l.starts_with("- ")).unwrap();
+        let after = wrapped.lines().skip_while(|l| *l != item).nth(1).unwrap();
+        assert!(after.starts_with("  word"), "{after}");
+    }
+
+    #[test]
+    fn numbered_items_indent_under_their_text() {
+        assert_eq!(list_indent("12. text"), 4);
+        assert_eq!(list_indent("  - text"), 4);
+        assert_eq!(list_indent("plain"), 0);
     }
 }

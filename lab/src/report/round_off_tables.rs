@@ -24,11 +24,11 @@ pub fn sections(records: &RoundoffRecords) -> String {
         out.push_str(&floor_table(r));
         out.push('\n');
         out.push_str(&law_table(r));
-        for p in &r.pairs {
-            out.push_str(&pair_rungs(p));
-        }
     }
     out.push_str(FLOORS_EXPLAINED);
+    out.push_str(
+        "\nEvery pair, rung by rung, is on [a detail page](details/round-off-rungs.md).\n",
+    );
     out.push_str("\n## Long runs: round-off growth\n\n");
     out.push_str(LONGRUN_METHOD);
     out.push_str(&longrun_table(&records.longrun));

@@ -19,7 +19,7 @@ pub fn summary(records: &SuiteRecords) -> String {
          [Verdict corpus](#verdict-corpus) · [Linear stability](#linear-stability) · \
          [Earth-Sun](#the-earth-sun-experiments) · [Hard cases](#hard-cases) · \
          [Speed against error](#speed-against-error) · [Round-off](#round-off-floors) · \
-         [Appendix](#appendix)\n\n",
+         [Detail pages](#detail-pages)\n\n",
     );
     out.push_str(
         "Integrators from published crates (utsuroi, differential-equations, ode_solvers, \
@@ -149,51 +149,53 @@ pub fn confusion_table(c: &Confusion) -> String {
 /// The figures two abreast, each linked to its SVG.
 fn figure_grid(records: &SuiteRecords) -> String {
     let mut out = String::new();
-    let image = |name: String, alt: String| {
+    let image = |name: &str, alt: &str, width: &str| {
         format!(
-            "<a href=\"{FOLDER}/{name}\"><img src=\"{FOLDER}/{name}\" alt=\"{alt}\" width=\"49%\"></a>"
+            "<a href=\"{FOLDER}/{name}\"><img src=\"{FOLDER}/{name}\" alt=\"{alt}\" width=\"{width}\"></a>"
+        )
+    };
+    // one scene shown in full, the hardest (the eccentric orbit), the others linked
+    const SHOWN: &str = "kepler-eccentric";
+    let per_scene = |caption: &str, prefix: &str, scenes: &[&str]| {
+        let others: Vec<String> = scenes
+            .iter()
+            .filter(|s| **s != SHOWN)
+            .map(|s| format!("[{s}]({FOLDER}/{prefix}-{s}.svg)"))
+            .collect();
+        format!(
+            "**{caption}**, on `{SHOWN}` (other scenes: {})\n\n<p>\n{}\n</p>\n\n",
+            others.join(" · "),
+            image(
+                &format!("{prefix}-{SHOWN}.svg"),
+                &format!("{caption}, {SHOWN}"),
+                "100%"
+            )
         )
     };
     let scenes = scene_ids();
-    let mut rows: Vec<(&str, Vec<String>)> = vec![
-        (
-            "Global error against step (log-log, every scheme, fitted slopes in the legend)",
-            scenes
-                .iter()
-                .map(|s| {
-                    image(
-                        format!("convergence-{s}.svg"),
-                        format!("error against step, {s}"),
-                    )
-                })
-                .collect(),
-        ),
-        (
-            "Energy error against time (running maximum over 10^4 periods)",
-            scenes
-                .iter()
-                .map(|s| image(format!("energy-{s}.svg"), format!("energy error, {s}")))
-                .collect(),
-        ),
-    ];
-    rows.push((
-        "Work against precision (force evaluations against global error, the adaptive peer included)",
-        records
-            .work
-            .iter()
-            .map(|w| image(format!("work-{}.svg", w.scene), format!("work-precision, {}", w.scene)))
-            .collect(),
+    let work_scenes: Vec<&str> = records.work.iter().map(|w| w.scene).collect();
+    out.push_str(&per_scene(
+        "Global error against step, a panel a family, the fitted window solid",
+        "convergence",
+        &scenes,
     ));
-    rows.push((
-        "Linear stability limit per force evaluation; the Earth-Sun orbit of the course notes",
-        vec![
-            image("stability.svg".into(), "stability limits".into()),
-            image("earth-sun-orbit.svg".into(), "Earth-Sun orbits".into()),
-        ],
+    out.push_str(&per_scene(
+        "Energy error against time, running maximum over 10^4 periods",
+        "energy",
+        &scenes,
     ));
-    for (caption, images) in rows {
-        let _ = writeln!(out, "**{caption}**\n");
-        let _ = writeln!(out, "<p>\n{}\n</p>\n", images.join("\n"));
-    }
+    out.push_str(&per_scene(
+        "Work against precision: force evaluations against global error, the adaptive \
+         integrators in their own panel",
+        "work",
+        &work_scenes,
+    ));
+    let _ = writeln!(
+        out,
+        "**Linear stability limit per force evaluation; the Earth-Sun orbit of the course \
+         notes**\n\n<p>\n{}\n{}\n</p>\n",
+        image("stability.svg", "stability limits", "60%"),
+        image("earth-sun-orbit.svg", "Earth-Sun orbits", "38%")
+    );
     out
 }

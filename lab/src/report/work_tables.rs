@@ -295,17 +295,18 @@ pub fn deterministic_section(records: &[WorkRecord], adaptive: &[ToleranceLadder
     out.push_str(&cheapest_table(records));
     out.push_str(
         "\nThe work-precision figures are in the summary; the force evaluations each \
-         scheme needs for each target are in the appendix.\n",
+         scheme needs for each target are on \
+         [a detail page](details/work-evaluations.md).\n",
     );
     out
 }
 
 /// Force evaluations to reach each target, per scene, with the peer's
 /// tolerances: the numbers behind the work-precision figures.
-pub fn evaluations_appendix(records: &[WorkRecord]) -> String {
-    let mut out = String::from("\n### Force evaluations to reach each target\n");
+pub fn evaluations_by_target(records: &[WorkRecord]) -> String {
+    let mut out = String::new();
     for r in records {
-        let _ = writeln!(out, "\n#### {}\n", r.scene);
+        let _ = writeln!(out, "\n## {}\n", r.scene);
         out.push_str(&work_table(r));
         let _ = writeln!(
             out,

@@ -69,3 +69,46 @@ fn mermaid_charts_take_logs_and_keep_every_series() {
     let bars = mermaid_bars("t", &["p", "q"], "y", &[2.0, f64::NAN]);
     assert!(bars.contains("bar [2.000, 0]"), "{bars}");
 }
+
+/// Every catalogue scheme is drawn in exactly one family's panel, and no
+/// panel holds more series than there are colours and markers.
+#[test]
+fn every_scheme_has_one_panel_and_no_panel_is_crowded() {
+    use stepladder_lab::report::figures::FAMILIES;
+    use stepladder_lab::report::plot::MAX_SERIES;
+    for meta in stepladder::scheme::catalogue() {
+        let panels = FAMILIES
+            .iter()
+            .filter(|(_, ids)| ids.contains(&meta.id))
+            .count();
+        assert_eq!(panels, 1, "{} is in {panels} panels", meta.id);
+    }
+    let drawn: usize = FAMILIES.iter().map(|(_, ids)| ids.len()).sum();
+    assert_eq!(
+        drawn,
+        stepladder::scheme::catalogue().len(),
+        "no unknown id"
+    );
+    for (family, ids) in FAMILIES {
+        assert!(ids.len() <= MAX_SERIES, "{family}: {} series", ids.len());
+    }
+}
+
+/// A panel of more series than colours is refused, never drawn with shared
+/// colours.
+#[test]
+fn a_crowded_panel_is_refused() {
+    use stepladder_lab::report::plot::{MAX_SERIES, Panel, Series, log_log_panels};
+    let series = |n: usize| -> Vec<Series> {
+        (0..n)
+            .map(|i| Series::plain(format!("s{i}"), [(1.0, 1.0 + i as f64), (2.0, 2.0)]))
+            .collect()
+    };
+    let panel = |n| Panel {
+        title: "p".into(),
+        series: series(n),
+    };
+    assert!(log_log_panels("t", "x", "y", &[panel(MAX_SERIES)]).is_ok());
+    let err = log_log_panels("t", "x", "y", &[panel(MAX_SERIES + 1)]).unwrap_err();
+    assert!(err.to_string().contains("more than 8"), "{err}");
+}

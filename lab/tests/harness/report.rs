@@ -14,38 +14,53 @@ fn committed_report_is_up_to_date() {
     );
 }
 
-/// The figures committed beside REPORT.md are the ones the current code
-/// draws from the suite's records, file for file, with none missing and
-/// none left over. They show errors, force evaluations and energies, never
-/// wall time, so they are the same on every machine and thread count.
-#[test]
-fn committed_figures_are_up_to_date() {
-    let dir = crate::common::root().join(stepladder_lab::report::figures::FOLDER);
-    let fresh = stepladder_lab::report::figures::deterministic_figures(super::common::suite())
-        .expect("the figures draw");
+/// The files committed in `dir` are `fresh`, file for file, with none
+/// missing and none left over.
+fn assert_folder_is(dir: &std::path::Path, fresh: &[(String, String)], what: &str) {
     let mut stale = Vec::new();
-    for (name, svg) in &fresh {
+    for (name, text) in fresh {
         match std::fs::read_to_string(dir.join(name)) {
-            Ok(committed) if committed == *svg => {}
+            Ok(committed) if committed == *text => {}
             Ok(_) => stale.push(format!("{name} differs")),
             Err(_) => stale.push(format!("{name} is missing")),
         }
     }
-    let mut committed: Vec<String> = std::fs::read_dir(&dir)
-        .expect("the figures are committed")
+    let mut committed: Vec<String> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("the {what} are committed in {}: {e}", dir.display()))
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     committed.retain(|n| !fresh.iter().any(|(f, _)| f == n));
     stale.extend(
         committed
             .into_iter()
-            .map(|n| format!("{n} is not drawn any more")),
+            .map(|n| format!("{n} is not written any more")),
     );
     assert!(
         stale.is_empty(),
-        "figures are stale ({}): regenerate them with `cargo run --release`",
+        "{what} are stale ({}): regenerate them with `cargo run --release`",
         stale.join(", ")
     );
+}
+
+/// The figures committed beside REPORT.md are the ones the current code
+/// draws from the suite's records. They show errors, force evaluations and
+/// energies, never wall time, so they are the same on every machine and
+/// thread count.
+#[test]
+fn committed_figures_are_up_to_date() {
+    let fresh = stepladder_lab::report::figures::deterministic_figures(super::common::suite())
+        .expect("the figures draw");
+    let dir = crate::common::root().join(stepladder_lab::report::figures::FOLDER);
+    assert_folder_is(&dir, &fresh, "figures");
+}
+
+/// The detail pages committed beside REPORT.md are the ones the current
+/// code writes; like the report's deterministic part, they hold no timing.
+#[test]
+fn committed_detail_pages_are_up_to_date() {
+    let fresh = stepladder_lab::report::pages::detail_pages(super::common::suite());
+    let dir = crate::common::root().join(stepladder_lab::report::pages::FOLDER);
+    assert_folder_is(&dir, &fresh, "detail pages");
 }
 
 #[test]
