@@ -23,6 +23,12 @@ pub enum Error {
     #[error("invalid scene: {0}")]
     InvalidScene(String),
 
+    /// A tableau that makes no method (no stages or flows, a coefficient
+    /// that is not finite, weight lists that do not alternate) or that the
+    /// order conditions cannot judge.
+    #[error("invalid table: {0}")]
+    InvalidTable(String),
+
     /// No scheme with this id in the catalogue.
     #[error("unknown scheme '{id}'; valid schemes: {valid}")]
     UnknownScheme {

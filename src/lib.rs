@@ -34,6 +34,9 @@
 //!   symplecticity, reversibility, stability, round-off, force evaluations,
 //!   the hard cases, adaptive integrators over a tolerance ladder), each
 //!   with its spec and its record;
+//! - [`conditions`]: the order conditions of a splitting, composition or
+//!   Nyström tableau, in double-double arithmetic, checked before any ladder
+//!   runs;
 //! - [`guard`]: one-line assertions of a scheme's claims for a test, with the
 //!   deciding figures in the failure message; [`guard_claims!`] and
 //!   [`guard_adaptive!`] write one `#[test]` per claim, with a pinned error;
@@ -79,6 +82,11 @@ pub mod study;
 /// The nalgebra version stepladder is built on, for writing generic schemes
 /// and scenes against the same vector types.
 pub use nalgebra;
+
+/// The order conditions of a splitting, composition, Runge-Kutta-Nyström or
+/// Runge-Kutta tableau, checked in double-double arithmetic before any
+/// ladder runs.
+pub use maths::conditions;
 
 // The floors under the studies and the machinery that runs them: public only
 // so that the lab (corpus, suites, report) and the harness tests can reach

@@ -11,6 +11,10 @@
 //! nalgebra's [`SVector`], [`Vector1`] and [`Vector2`], which states hold), every
 //! study with its spec and record and [`Error`].
 
+pub use crate::conditions::{
+    self, Conditions, Defect, NystromConditions, RungeKuttaConditions, SplittingConditions,
+    StepRatio, TreeDefect,
+};
 pub use crate::error::Error;
 pub use crate::guard::*;
 pub use crate::nalgebra::{SVector, Vector1, Vector2};

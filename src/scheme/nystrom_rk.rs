@@ -224,9 +224,10 @@ const R8581: f64 = 92.633_687_176_966_02;
 ///
 /// Coefficients are the published closed forms in `r = sqrt(8581)`,
 /// evaluated in `f64` at compile time; the tests check them against the
-/// independently typed table of the held-out corpus and against the
-/// quadrature and tree order conditions (sixth order for the main solution,
-/// fourth for the embedded one, which fails a fifth-order condition).
+/// independently typed table of the held-out corpus and against every
+/// Nyström order condition ([`crate::conditions::nystrom`]: sixth order for
+/// the main solution, fourth for the embedded one, which fails a fifth-order
+/// condition).
 pub const DPRKN6: NystromTable<6> = {
     let r = R8581;
     let bb3 = (84_119_543.0 + 366_727.0 * r) / 409_622_616.0;
@@ -323,10 +324,11 @@ const fn ratio(n: i64, d: i64) -> f64 {
 /// nodes `c = 0, 1/20, 1/10, 3/10, 1/2, 7/10, 9/10, 1, 1`.
 ///
 /// Every coefficient is a published rational, rounded once. Checked here by
-/// the quadrature conditions and by the local error on a nonlinear orbit;
-/// `tests/check_nystrom_rk_orders.py` checks the rationals exactly against
-/// every Nyström order condition (the main solution's local error vanishes
-/// through `h^8`, the embedded one's through `h^6`).
+/// every Nyström order condition in double-double
+/// ([`crate::conditions::nystrom`]: the main solution's local error vanishes
+/// through `h^8`, the embedded one's through `h^6`, to the rounding of the
+/// coefficients) and by the local error on a nonlinear orbit;
+/// `tests/check_nystrom_rk_orders.py` checks the rationals exactly.
 pub const DPRKN8: NystromTable<9> = {
     let bb = [
         ratio(223, 7938),
@@ -488,93 +490,43 @@ pub const NYSTROM4: NystromTable<3> = NystromTable::new(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::conditions;
     use crate::scene::{Harmonic, KeplerCircular};
-
-    /// The velocity and position order-condition defects of a Nyström
-    /// tableau for `q'' = a(q)` up to order `p` (HNW I, II.14, trees with no
-    /// velocity-dependent vertices): velocity weights `b` against
-    /// `sum b c^k = 1/(k+1)` (`k < p`), `sum b_i a_ij c_j = 1/24` and its
-    /// fifth-order companions; position weights against `sum b_bar c^k =
-    /// 1/((k+1)(k+2))` (`k < p - 1`) and `sum b_bar_i a_ij c_j = 1/120`.
-    fn defects<const S: usize>(
-        c: &[f64; S],
-        a: &[[f64; S]; S],
-        b_bar: &[f64; S],
-        b: &[f64; S],
-        p: usize,
-    ) -> Vec<(&'static str, usize, f64)> {
-        let dot = |w: &[f64; S], f: &dyn Fn(usize) -> f64| (0..S).map(|i| w[i] * f(i)).sum::<f64>();
-        let ac = |i: usize, k: i32| (0..S).map(|j| a[i][j] * c[j].powi(k)).sum::<f64>();
-        let mut d = Vec::new();
-        for k in 0..p {
-            d.push((
-                "b c^k",
-                k + 1,
-                dot(b, &|i| c[i].powi(k as i32)) - 1.0 / (k + 1) as f64,
-            ));
-        }
-        for k in 0..p - 1 {
-            let exact = 1.0 / ((k + 1) * (k + 2)) as f64;
-            d.push((
-                "b_bar c^k",
-                k + 2,
-                dot(b_bar, &|i| c[i].powi(k as i32)) - exact,
-            ));
-        }
-        if p >= 4 {
-            d.push(("b a c", 4, dot(b, &|i| ac(i, 1)) - 1.0 / 24.0));
-        }
-        if p >= 5 {
-            d.push(("b c a c", 5, dot(b, &|i| c[i] * ac(i, 1)) - 1.0 / 30.0));
-            d.push(("b a c^2", 5, dot(b, &|i| ac(i, 2)) - 1.0 / 60.0));
-            d.push(("b_bar a c", 5, dot(b_bar, &|i| ac(i, 1)) - 1.0 / 120.0));
-        }
-        d
-    }
 
     #[test]
     fn the_surd_is_the_square_root_of_8581() {
         assert!((R8581 * R8581 - 8581.0).abs() < 4e-12);
     }
 
+    /// Every Nyström order condition through `h^7`: the main solutions of
+    /// DPRKN6 and Nyström's method have their orders and fail the next, and
+    /// the embedded solution is fourth order and fails order five (an
+    /// embedded solution of order five would make the estimate useless).
     #[test]
     fn the_main_solutions_have_their_order_and_the_embedded_one_fails_order_five() {
-        for (name, order, d) in defects(&DPRKN6.c, &DPRKN6.a, &DPRKN6.b_bar, &DPRKN6.b, 5) {
-            assert!(d.abs() < 1e-15, "{name} (order {order}): {d}");
-        }
+        let c = conditions::nystrom(&DPRKN6).unwrap();
+        println!(
+            "dprkn6 {}
+       embedded {}",
+            c.main,
+            c.embedded.as_ref().unwrap()
+        );
+        assert!(c.main.confirms(6), "{}", c.main);
+        assert!(c.embedded.unwrap().confirms(4));
         // rows sum to c^2/2 (the stage positions are consistent)
         for i in 0..6 {
             let row: f64 = DPRKN6.a[i].iter().sum();
             assert!((row - DPRKN6.c[i].powi(2) / 2.0).abs() < 1e-16, "row {i}");
         }
-        // sixth order quadrature: b c^5 = 1/6, b_bar c^4 = 1/30
-        let d = defects(&DPRKN6.c, &DPRKN6.a, &DPRKN6.b_bar, &DPRKN6.b, 6);
-        assert!(d.iter().all(|x| x.2.abs() < 1e-15), "{d:?}");
-        let e = DPRKN6.embedded.unwrap();
-        let emb = defects(&DPRKN6.c, &DPRKN6.a, &e.b_bar, &e.b, 5);
-        for (name, order, d) in &emb {
-            if *order <= 4 {
-                assert!(d.abs() < 1e-15, "embedded {name} (order {order}): {d}");
-            }
-        }
-        // an embedded solution of order five would make the estimate useless
-        assert!(
-            emb.iter().any(|(_, o, d)| *o == 5 && d.abs() > 1e-4),
-            "{emb:?}"
-        );
-        let nys = defects(&NYSTROM4.c, &NYSTROM4.a, &NYSTROM4.b_bar, &NYSTROM4.b, 5);
-        assert!(
-            nys.iter().filter(|x| x.1 <= 4).all(|x| x.2.abs() < 1e-15),
-            "{nys:?}"
-        );
-        assert!(nys.iter().any(|x| x.1 == 5 && x.2.abs() > 1e-3), "{nys:?}");
+        let c = conditions::nystrom(&NYSTROM4).unwrap();
+        assert!(c.main.confirms(4), "{}", c.main);
     }
 
-    /// DPRKN8's quadrature conditions to order eight (positions to seven),
-    /// its rows summing to `c^2/2`, the tree conditions up to order five,
-    /// and its local error on the Kepler orbit falling like `h^9` (halving
-    /// `h` divides it by 512), its estimate's like `h^7` (by 128). The full
-    /// set of trees is checked in exact rationals by
+    /// DPRKN8's every Nyström order condition through `h^8` (its estimate's
+    /// through `h^6`) and none beyond, its rows summing to `c^2/2`, and its
+    /// local error on the Kepler orbit falling like `h^9` (halving `h`
+    /// divides it by 512), its estimate's like `h^7` (by 128). The same
+    /// trees are checked in exact rationals by
     /// `tests/check_nystrom_rk_orders.py`.
     #[test]
     fn dprkn8_has_order_eight_and_its_estimate_order_six() {
@@ -583,19 +535,15 @@ mod tests {
             let row: f64 = t.a[i].iter().sum();
             assert!((row - t.c[i].powi(2) / 2.0).abs() < 4e-16, "row {i}: {row}");
         }
-        for k in 0..8 {
-            let d: f64 =
-                (0..9).map(|i| t.b[i] * t.c[i].powi(k)).sum::<f64>() - 1.0 / (k + 1) as f64;
-            assert!(d.abs() < 1e-15, "b c^{k}: {d}");
-        }
-        for k in 0..7 {
-            let d: f64 = (0..9).map(|i| t.b_bar[i] * t.c[i].powi(k)).sum::<f64>()
-                - 1.0 / ((k + 1) * (k + 2)) as f64;
-            assert!(d.abs() < 1e-15, "b_bar c^{k}: {d}");
-        }
-        for (name, order, d) in defects(&t.c, &t.a, &t.b_bar, &t.b, 5) {
-            assert!(d.abs() < 1e-14, "{name} (order {order}): {d}");
-        }
+        let c = conditions::nystrom(t).unwrap();
+        println!(
+            "dprkn8 {}
+       embedded {}",
+            c.main,
+            c.embedded.as_ref().unwrap()
+        );
+        assert!(c.main.confirms(8), "{}", c.main);
+        assert!(c.embedded.unwrap().confirms(6));
         assert!(t.first_same_as_last());
         assert_eq!(t.meta.force_evaluations, 8);
         let scene = KeplerCircular;

@@ -9,9 +9,10 @@
 //! [`ExplicitRk`] over a Butcher tableau, [`Nystrom`] over a
 //! Runge-Kutta-Nyström tableau, [`ImplicitRk`] over an implicit tableau, and
 //! the catalogue's [`SplittingTable`] for splittings and compositions. The
-//! tests check every tableau against its order conditions (Butcher trees,
-//! Nyström trees, and for splittings the Taylor series of a product of matrix
-//! exponentials) and every scheme's order on the harmonic oscillator.
+//! tests check every tableau against its order conditions
+//! ([`stepladder::conditions`]: Butcher trees, the Nyström conditions, and
+//! for splittings the Taylor series of a product of matrix exponentials) and
+//! every scheme's order on the harmonic oscillator.
 
 use nalgebra::SVector;
 use stepladder::scene::Scene;
@@ -733,101 +734,22 @@ pub(crate) mod tests {
     //! The helpers are shared with the tests of [`super::super::broken`].
 
     use super::*;
-    use nalgebra::{Matrix2, SMatrix, Vector1};
-    use std::collections::BTreeSet;
+    use nalgebra::{Matrix2, Vector1};
+    use stepladder::conditions;
     use stepladder::run::integrate;
     use stepladder::scene::{Anharmonic, Harmonic};
+    use stepladder::scheme::NystromTable;
 
     // ---------------------------------------------------------------- trees
 
-    /// A rooted tree as the sorted list of its subtrees.
-    #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
-    pub(crate) struct Tree(Vec<Tree>);
-
-    impl Tree {
-        fn order(&self) -> usize {
-            1 + self.0.iter().map(Tree::order).sum::<usize>()
-        }
-
-        /// `gamma(t) = |t| prod gamma(children)`.
-        fn gamma(&self) -> f64 {
-            self.order() as f64 * self.0.iter().map(Tree::gamma).product::<f64>()
-        }
-
-        /// Every tree with one more node, in canonical form.
-        fn grown(&self) -> Vec<Tree> {
-            let mut out = Vec::new();
-            let mut with_leaf = self.0.clone();
-            with_leaf.push(Tree(Vec::new()));
-            with_leaf.sort();
-            out.push(Tree(with_leaf));
-            for (i, child) in self.0.iter().enumerate() {
-                for g in child.grown() {
-                    let mut children = self.0.clone();
-                    children[i] = g;
-                    children.sort();
-                    out.push(Tree(children));
-                }
-            }
-            out
-        }
-
-        /// The stage vector `g(t)_i = prod_children (A g(child))_i`.
-        fn stages<const S: usize>(&self, a: &[[f64; S]; S]) -> [f64; S] {
-            let mut g = [1.0; S];
-            for child in &self.0 {
-                let gc = child.stages(a);
-                for (i, gi) in g.iter_mut().enumerate() {
-                    *gi *= (0..S).map(|j| a[i][j] * gc[j]).sum::<f64>();
-                }
-            }
-            g
-        }
-
-        /// `Phi(t) - 1/gamma(t)`, the defect of the tree's order condition.
-        pub(crate) fn defect<const S: usize>(&self, a: &[[f64; S]; S], b: &[f64; S]) -> f64 {
-            let g = self.stages(a);
-            (0..S).map(|i| b[i] * g[i]).sum::<f64>() - 1.0 / self.gamma()
-        }
-
-        /// A readable name: `t` for a leaf, `[..]` for children.
-        pub(crate) fn name(&self) -> String {
-            if self.0.is_empty() {
-                "t".into()
-            } else {
-                let inner: Vec<String> = self.0.iter().map(Tree::name).collect();
-                format!("[{}]", inner.join(","))
-            }
-        }
-    }
-
-    /// All rooted trees with exactly `order` nodes.
-    pub(crate) fn trees(order: usize) -> Vec<Tree> {
-        let mut set = BTreeSet::from([Tree(Vec::new())]);
-        for _ in 1..order {
-            set = set.iter().flat_map(Tree::grown).collect();
-        }
-        set.into_iter().collect()
-    }
-
-    /// Every tree of order `p` by name, with the defect of its condition.
-    pub(crate) fn defects<const S: usize>(
+    /// Butcher's tree conditions through `degree`
+    /// ([`stepladder::conditions::runge_kutta`]).
+    pub(crate) fn trees<const S: usize>(
         a: &[[f64; S]; S],
         b: &[f64; S],
-        p: usize,
-    ) -> Vec<(String, f64)> {
-        trees(p)
-            .iter()
-            .map(|t| (t.name(), t.defect(a, b)))
-            .collect()
-    }
-
-    /// The largest defect of the order conditions of order `p` exactly.
-    pub(crate) fn worst_defect<const S: usize>(a: &[[f64; S]; S], b: &[f64; S], p: usize) -> f64 {
-        defects(a, b, p)
-            .iter()
-            .map(|(_, d)| d.abs())
-            .fold(0.0, f64::max)
+        degree: usize,
+    ) -> conditions::RungeKuttaConditions {
+        conditions::runge_kutta(a, b, degree).unwrap()
     }
 
     /// Checks a tableau: `c = A 1`, every condition up to `order` to
@@ -847,24 +769,32 @@ pub(crate) mod tests {
                 c[i]
             );
         }
-        for p in 1..=order {
-            for (tree, d) in defects(a, b, p) {
-                assert!(d.abs() < 4e-15, "{name}: condition of {tree} off by {d:e}");
-            }
+        let c = trees(a, b, order + 1);
+        println!("{name:<18} {}", c.by_degree);
+        for t in c.trees.iter().filter(|t| t.defect.degree <= order) {
+            assert!(
+                t.defect.holds(),
+                "{name}: condition of {} off: {t:?}",
+                t.tree
+            );
         }
-        let next = worst_defect(a, b, order + 1);
+        let next = c.by_degree.at(order + 1).unwrap();
         assert!(
-            next > 1e-4,
-            "{name}: order {} conditions hold too ({next:e})",
+            next.clearly_fails(),
+            "{name}: order {} conditions hold too ({next:?})",
             order + 1
         );
     }
 
     #[test]
     fn tree_counts_are_the_known_ones() {
-        let counts: Vec<usize> = (1..=6).map(|p| trees(p).len()).collect();
+        let c = trees(&HEUN.a, &HEUN.b, 6);
+        let of_order = |p: usize| c.trees.iter().filter(move |t| t.defect.degree == p);
+        let counts: Vec<usize> = (1..=6).map(|p| of_order(p).count()).collect();
         assert_eq!(counts, [1, 1, 2, 4, 9, 20]);
-        assert_eq!(trees(3).iter().map(Tree::gamma).sum::<f64>(), 3.0 + 6.0);
+        // gamma = 1/scale: 3 for the bushy tree, 6 for the tall one
+        let gammas: f64 = of_order(3).map(|t| 1.0 / t.defect.scale).sum();
+        assert_eq!(gammas, 3.0 + 6.0);
     }
 
     #[test]
@@ -923,107 +853,25 @@ pub(crate) mod tests {
         assert!(symmetry_defect(&LOBATTO_IIIA4.a, &LOBATTO_IIIA4.b) < 1e-16);
     }
 
-    /// Defects of the Runge-Kutta-Nyström order conditions up to order 4
-    /// (Hairer, Norsett, Wanner I, II.14), then `sum b c^4 - 1/5`.
-    fn nystrom_defects(t: &Nystrom<3>) -> Vec<f64> {
-        let (a, b, bb, c) = (&t.a, &t.b, &t.b_bar, &t.c);
-        let s = |f: &dyn Fn(usize) -> f64| (0..3).map(f).sum::<f64>();
-        let a1 = |i: usize| s(&|j| a[i][j]);
-        let ac = |i: usize| s(&|j| a[i][j] * c[j]);
-        let mut d: Vec<f64> = (0..3).map(|i| a1(i) - c[i] * c[i] / 2.0).collect();
-        d.push(s(&|i| bb[i]) - 1.0 / 2.0);
-        d.push(s(&|i| bb[i] * c[i]) - 1.0 / 6.0);
-        d.push(s(&|i| bb[i] * c[i] * c[i]) - 1.0 / 12.0);
-        d.push(s(&|i| bb[i] * a1(i)) - 1.0 / 24.0);
-        for k in 0..4 {
-            d.push(s(&|i| b[i] * c[i].powi(k)) - 1.0 / (k + 1) as f64);
-        }
-        d.push(s(&|i| b[i] * a1(i)) - 1.0 / 6.0);
-        d.push(s(&|i| b[i] * c[i] * a1(i)) - 1.0 / 8.0);
-        d.push(s(&|i| b[i] * ac(i)) - 1.0 / 24.0);
-        d.push(s(&|i| b[i] * c[i].powi(4)) - 1.0 / 5.0);
-        d
-    }
-
+    /// Every Nyström condition through `h^5`
+    /// ([`stepladder::conditions::nystrom_up_to`]): fourth order, not fifth
+    /// (`sum b c^4 = 5/24`, not 1/5), and the rows summing to `c^2/2`.
     #[test]
     fn nystrom_tableau_satisfies_its_order_conditions() {
-        let d = nystrom_defects(&RKN4);
-        let (last, up_to_four) = d.split_last().unwrap();
-        assert!(up_to_four.iter().all(|x| x.abs() < 3e-16), "{d:?}");
-        assert!((last - 1.0 / 120.0).abs() < 1e-16, "{last}");
+        let t = &RKN4;
+        let table = NystromTable::new(t.meta, t.c, t.a, t.b_bar, t.b, None);
+        let c = conditions::nystrom_up_to(&table, 5).unwrap().main;
+        println!("rkn4 {c}");
+        assert!(c.confirms(4), "{c}");
+        for i in 0..3 {
+            let row = t.a[i].iter().sum::<f64>() - t.c[i] * t.c[i] / 2.0;
+            assert!(row.abs() < 3e-16, "row {i}: {row:e}");
+        }
+        let fifth = (0..3).map(|i| t.b[i] * t.c[i].powi(4)).sum::<f64>() - 1.0 / 5.0;
+        assert!((fifth - 1.0 / 120.0).abs() < 1e-16, "{fifth}");
     }
 
     // ------------------------------------------------------------ splittings
-
-    const N: usize = 5;
-    type Matrix = SMatrix<f64, N, N>;
-
-    /// A fixed pseudo-random matrix with entries in `[-1, 1]` (SplitMix64).
-    fn random_matrix(seed: u64) -> Matrix {
-        let mut state = seed;
-        Matrix::from_fn(|_, _| {
-            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^= z >> 31;
-            2.0 * (z >> 11) as f64 / (1u64 << 53) as f64 - 1.0
-        })
-    }
-
-    /// The drift generator `A` and kick generator `B` of the generic linear
-    /// problem `y' = (A + B) y`. By the Amitsur-Levitzki theorem `5 x 5`
-    /// matrices satisfy no polynomial identity below degree 10, so a
-    /// composition that agrees with `exp(h (A + B))` up to `h^p` at random
-    /// matrices satisfies every order condition up to `p`.
-    pub(crate) fn generators() -> (Matrix, Matrix) {
-        (random_matrix(0x5eed_0001), random_matrix(0x5eed_0002))
-    }
-
-    /// The Taylor coefficients in `h`, up to `h^degree`, of one step of the
-    /// table on `y' = (A + B) y`, minus those of `exp(h (A + B))`.
-    pub(crate) fn series_defects(table: &SplittingTable, degree: usize) -> Vec<Matrix> {
-        let (a, b) = generators();
-        let exp = |x: &Matrix, w: f64| -> Vec<Matrix> {
-            let mut terms = vec![Matrix::identity()];
-            for j in 1..=degree {
-                terms.push(terms[j - 1] * x * (w / j as f64));
-            }
-            terms
-        };
-        let times = |left: &[Matrix], right: &[Matrix]| -> Vec<Matrix> {
-            (0..=degree)
-                .map(|n| (0..=n).map(|i| left[i] * right[n - i]).sum())
-                .collect()
-        };
-        let mut product = exp(&Matrix::zeros(), 0.0);
-        for (flow, w) in table.sequence() {
-            let x = if flow == Flow::Drift { &a } else { &b };
-            product = times(&exp(x, w), &product);
-        }
-        let exact = exp(&(a + b), 1.0);
-        product.iter().zip(&exact).map(|(p, e)| p - e).collect()
-    }
-
-    /// The size of each Taylor coefficient of `exp(h (A + B))`, against
-    /// which the defects are judged.
-    pub(crate) fn exact_sizes(degree: usize) -> Vec<f64> {
-        let (a, b) = generators();
-        let mut term = Matrix::identity();
-        let mut sizes = vec![1.0];
-        for j in 1..=degree {
-            term = term * (a + b) / j as f64;
-            sizes.push(term.amax());
-        }
-        sizes
-    }
-
-    /// The relative defect of each Taylor coefficient, degrees `1..=degree`.
-    pub(crate) fn relative_defects(table: &SplittingTable, degree: usize) -> Vec<f64> {
-        let defects = series_defects(table, degree);
-        let sizes = exact_sizes(degree);
-        (1..=degree).map(|j| defects[j].amax() / sizes[j]).collect()
-    }
 
     /// Sums of the drift and kick weights.
     pub(crate) fn sums(table: &SplittingTable) -> (f64, f64) {
@@ -1039,16 +887,9 @@ pub(crate) mod tests {
             "{}: {d} {k}",
             meta.id
         );
-        let rel = relative_defects(table, order + 1);
-        for (j, r) in rel[..order].iter().enumerate() {
-            assert!(*r < 1e-13, "{}: degree {} off by {r:e}", meta.id, j + 1);
-        }
-        assert!(
-            rel[order] > 1e-3,
-            "{}: degree {} holds too",
-            meta.id,
-            order + 1
-        );
+        let c = conditions::splitting_general(&table.sequence(), order + 1).unwrap();
+        println!("{:<22} {c}", meta.id);
+        assert!(c.confirms(order), "{}: {c}", meta.id);
         let sequence = table.sequence();
         let palindrome = sequence
             .iter()

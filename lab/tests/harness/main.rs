@@ -10,7 +10,6 @@ mod catalogue;
 mod cli;
 mod common;
 mod corpus;
-mod double_double;
 mod figures;
 mod geometry;
 mod hard;
