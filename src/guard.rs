@@ -15,7 +15,6 @@
 
 use crate::scene::Scene;
 use crate::scheme::Scheme;
-use crate::study::Verdict;
 use crate::study::accuracy::order::{OrderRecord, OrderSpec, global_order};
 use crate::study::accuracy::pin::{PinOutcome, check_pin};
 use crate::study::adaptive::{ToleranceLadderRecord, ToleranceLadderSpec, tolerance_ladder};
@@ -23,6 +22,7 @@ use crate::study::cost::evaluations::{EvaluationRecord, counting_step, evaluatio
 use crate::study::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::study::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::study::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+use crate::study::verdict::Verdict;
 
 /// Measures the global order with the automatic ladder; panics unless it
 /// agrees with `scheme.meta().order`.

@@ -575,7 +575,7 @@ mod tests {
         let phase = phase_error(&bb);
         assert_eq!(
             phase.verdict,
-            Some(crate::study::Verdict::Pass),
+            Some(crate::study::verdict::Verdict::Pass),
             "{}",
             phase.reason
         );

@@ -91,11 +91,11 @@ pub(super) fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {
             "{} ({}), {} periods, up to {} steps",
             record.scene, record.scene_parameters, record.periods, record.max_steps
         );
-        print!("{}", report::round_off_tables::floor_table(&record));
+        print!("{}", report::round_off::floor_table(&record));
         println!();
-        print!("{}", report::round_off_tables::law_table(&record));
+        print!("{}", report::round_off::law_table(&record));
         for p in &record.pairs {
-            print!("{}", report::round_off_tables::pair_rungs(p));
+            print!("{}", report::round_off::pair_rungs(p));
         }
     }
     Ok(ExitCode::SUCCESS)
@@ -148,7 +148,7 @@ pub(super) fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
     if args.json {
         print_json(&records);
     } else {
-        print!("{}", report::round_off_tables::longrun_table(&records));
+        print!("{}", report::round_off::longrun_table(&records));
     }
     Ok(ExitCode::SUCCESS)
 }

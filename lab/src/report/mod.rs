@@ -1,26 +1,26 @@
 //! REPORT.md from the suite's records. Nothing is computed here: every figure
 //! comes from a record, and the same records feed the CLI and the snapshots.
 
-mod adaptive_tables;
+mod adaptive;
 pub mod figures;
-mod hard_tables;
+mod hard_cases;
 mod markdown;
 pub mod pages;
 pub mod plot;
-pub mod round_off_tables;
+pub mod round_off;
 mod summary;
-mod work_tables;
+mod work_precision;
 
-pub use adaptive_tables::{
-    adaptive_section, ladder_table, summary_table as adaptive_summary_table,
-};
-pub use hard_tables::{
+pub use adaptive::{adaptive_section, ladder_table, summary_table as adaptive_summary_table};
+pub use hard_cases::{
     eccentric_energy_grid, eccentric_order_table, escape_table, following_rungs, following_table,
     hard_cases_section, predicted_boundary, round_off_table,
 };
 pub use markdown::Table;
 use markdown::{opt, order, sci, yes_no};
-pub use work_tables::{cheapest_table, speed_table, time_to_target_table, work_scene, work_table};
+pub use work_precision::{
+    cheapest_table, speed_table, time_to_target_table, work_scene, work_table,
+};
 
 use crate::suite::{CaseRecords, SuiteRecords};
 use std::fmt::Write as _;
@@ -46,11 +46,11 @@ pub fn render(records: &SuiteRecords) -> String {
     out.push_str(MACHINE_MARKER);
     out.push('\n');
     out.push_str(&timings(records));
-    out.push_str(&work_tables::timing_section(
+    out.push_str(&work_precision::timing_section(
         &records.speed,
         &records.work_timing,
     ));
-    out.push_str(&adaptive_tables::timing_section(
+    out.push_str(&adaptive::timing_section(
         &records.adaptive,
         &records.work_timing,
     ));
@@ -263,12 +263,12 @@ fn rest_of_report(records: &SuiteRecords) -> String {
     out.push_str(&earth_sun(&records.earth_sun));
     out.push('\n');
     out.push_str(&hard_cases_section(&records.hard));
-    out.push_str(&work_tables::deterministic_section(
+    out.push_str(&work_precision::deterministic_section(
         &records.work,
         &records.adaptive.ladders,
     ));
-    out.push_str(&adaptive_tables::adaptive_section(&records.adaptive));
-    out.push_str(&round_off_tables::sections(&records.roundoff));
+    out.push_str(&adaptive::adaptive_section(&records.adaptive));
+    out.push_str(&round_off::sections(&records.roundoff));
     out.push_str(&pages::index());
     out
 }

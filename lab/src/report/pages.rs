@@ -3,11 +3,11 @@
 //! figure of the report, kept out of the report so that it reads in one
 //! scroll. Deterministic like the report, and checked for staleness alike.
 
-use super::adaptive_tables::ladder_table;
-use super::hard_tables::following_rungs;
+use super::adaptive::ladder_table;
+use super::hard_cases::following_rungs;
 use super::markdown::wrap_prose;
-use super::round_off_tables::pair_rungs;
-use super::{corpus_entries, rung_table, twin_table, work_tables, write_atomically};
+use super::round_off::pair_rungs;
+use super::{corpus_entries, rung_table, twin_table, work_precision, write_atomically};
 use crate::suite::SuiteRecords;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -59,7 +59,7 @@ const PAGES: [Page; 7] = [
         title: "Force evaluations to reach each target",
         holds: "the numbers behind the work-precision figures, scheme by scheme and the \
                 peer tolerance by tolerance",
-        body: |r| work_tables::evaluations_by_target(&r.work),
+        body: |r| work_precision::evaluations_by_target(&r.work),
     },
     Page {
         file: "adaptive-tolerances.md",

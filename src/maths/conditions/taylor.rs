@@ -23,7 +23,7 @@
 //! rounding allow.
 
 use super::dd::{Dd, UNIT, moved_one_ulp};
-use super::{Defect, StepRatio, uniform};
+use super::defect::{Defect, StepRatio, uniform};
 use crate::scheme::Flow;
 
 const D: usize = 2;

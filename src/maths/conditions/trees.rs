@@ -8,7 +8,7 @@
 //! there is no test problem to choose.
 
 use super::dd::{Dd, UNIT, moved_one_ulp};
-use super::{Defect, TreeDefect};
+use super::defect::{Defect, TreeDefect};
 
 /// Every rooted tree up to `max` vertices, smaller trees first: sizes and
 /// children (indices of smaller trees, a non-decreasing multiset).

@@ -45,7 +45,7 @@
 
 use crate::maths::window::RoundOffModel;
 use crate::scene::Invariant;
-use crate::study::Verdict;
+use crate::study::verdict::Verdict;
 use crate::study::wording::{figure, vs_upper};
 use serde::Serialize;
 

@@ -52,8 +52,8 @@ use crate::run::{Outcome, integrate, integrate_tallied};
 use crate::scene::{Invariant, InvariantValue, Scaled, Scene};
 use crate::scheme::{Scheme, SolveTally};
 use crate::state::State;
-use crate::study::Verdict;
 use crate::study::accuracy::invariants::{InvariantRecord, InvariantSample, judge_invariant};
+use crate::study::verdict::Verdict;
 use crate::tolerance::{
     self, ERROR_CEILING, EXACT_SOLUTION_ULPS, MIN_WINDOW, MIN_WINDOW_HALVINGS, TWIN_SCALE,
 };

@@ -8,8 +8,8 @@ use crate::maths::fit::power_law;
 use crate::maths::window::DropReason;
 use crate::maths::window::median_of;
 use crate::maths::window::{Analysis, RungData, select_window};
-use crate::study::Verdict;
 use crate::study::accuracy::rung::{OrderReduction, Reference, Rung};
+use crate::study::verdict::Verdict;
 use crate::study::wording::{figure, order, vs_lower, vs_upper};
 use crate::tolerance::{
     self, ERROR_CEILING, MIN_WINDOW, MIN_WINDOW_HALVINGS, ORDER_TOLERANCE, REFERENCE_RUNGS,

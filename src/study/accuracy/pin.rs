@@ -136,11 +136,11 @@ use crate::run::integrate;
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::state::State;
-use crate::study::Verdict;
 use crate::study::accuracy::order::{
     DropReason, OrderRecord, OrderSpec, Reference, RoundOffModel, comparison_steps,
     exact_rung_error, global_order,
 };
+use crate::study::verdict::Verdict;
 use crate::tolerance::{ERROR_CEILING, EXACT_SOLUTION_ULPS};
 use std::path::{Path, PathBuf};
 

@@ -4,7 +4,7 @@
 
 use crate::maths::tangent::{acceleration_jacobian, potential_gradient};
 use crate::scene::Scene;
-use crate::study::Verdict;
+use crate::study::verdict::Verdict;
 use crate::tolerance::SCENE_TOLERANCE;
 use nalgebra::SVector;
 use serde::Serialize;

@@ -210,8 +210,8 @@ where
 mod tests {
     use super::*;
     use crate::scene::KeplerCircular;
-    use crate::study::Verdict;
     use crate::study::adaptive::{ToleranceLadderSpec, tolerance_ladder};
+    use crate::study::verdict::Verdict;
 
     /// Adaptive RK4 by step doubling on the circular orbit's 4-vector, with
     /// two defects to switch on: a report of one evaluation too few per

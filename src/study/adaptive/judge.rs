@@ -2,13 +2,13 @@
 //! integrator judged against the figures the ladder measured.
 
 use super::integrator::{AdaptiveClaims, RunEnd};
-use super::ladder::{
+use super::record::{
     AdaptiveClaim, EnergyGrowth, JudgedClaim, MIN_FIT_POINTS, Proportionality, RoundTrip,
     TolerancePoint,
 };
 use crate::maths::fit::power_law;
-use crate::study::Verdict;
 use crate::study::geometry::energy::EnergyClass;
+use crate::study::verdict::Verdict;
 
 fn pre_asymptotic_method(claims: &AdaptiveClaims, f: &Proportionality) -> Option<String> {
     let method = f.method_order.as_ref()?;

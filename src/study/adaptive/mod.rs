@@ -17,12 +17,11 @@ pub mod integrator;
 mod judge;
 pub mod ladder;
 pub mod pin;
+pub mod record;
 
 pub use black_box::{AdaptiveBlackBox, Advance, AdvanceFn};
 pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
 pub use integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
-pub use ladder::{
-    AdaptiveClaim, JudgedClaim, ToleranceLadderRecord, ToleranceLadderSpec, TolerancePoint,
-    proportionality_exponent, tolerance_ladder,
-};
+pub use ladder::{ToleranceLadderSpec, proportionality_exponent, tolerance_ladder};
 pub use pin::{AdaptivePin, AdaptivePinOutcome, check_adaptive_pin};
+pub use record::{AdaptiveClaim, JudgedClaim, ToleranceLadderRecord, TolerancePoint};

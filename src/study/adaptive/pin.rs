@@ -27,7 +27,8 @@
 //! run of `N` steps).
 
 use super::integrator::{AdaptiveIntegrator, RunEnd};
-use super::ladder::{ToleranceLadderRecord, point};
+use super::ladder::point;
+use super::record::ToleranceLadderRecord;
 use crate::scene::{Scaled, Scene};
 use crate::study::accuracy::pin::{missing_under_ci, pin_fields, printed, write_pin};
 use crate::study::wording::figure;

@@ -20,7 +20,7 @@
 use crate::run::integrate;
 use crate::scene::{Counted, Scene};
 use crate::scheme::Scheme;
-use crate::study::Verdict;
+use crate::study::verdict::Verdict;
 use serde::Serialize;
 
 /// Steps of the shorter counting run; the longer one takes twice as many.

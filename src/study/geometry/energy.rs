@@ -18,7 +18,7 @@ use crate::maths::fit::power_law;
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
-use crate::study::Verdict;
+use crate::study::verdict::Verdict;
 use crate::study::wording::{figure, vs_upper};
 use crate::tolerance::{
     BOUNDED_BELOW, GROWTH_DECADES, LOST_FRACTION, LOST_GROWTH, RANDOM_WALK_BELOW, round_off_energy,

@@ -6,7 +6,7 @@ use crate::maths::tangent::{residual_error_bound, symplectic_residual, tangent_m
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::state::State;
-use crate::study::Verdict;
+use crate::study::verdict::Verdict;
 use crate::study::wording::{figure, vs_upper};
 use crate::tolerance::SYMPLECTIC_TOLERANCE;
 use serde::Serialize;

@@ -216,7 +216,7 @@ pub fn eccentric_order<M: Scheme>(
             &cap_note,
             &final_note,
         ),
-        _ if record.verdict == crate::study::Verdict::Fail => {
+        _ if record.verdict == crate::study::verdict::Verdict::Fail => {
             (OrderStatus::Fail, format!("{}; {cap_note}", record.reason))
         }
         _ if resolved_below.is_none() => (

@@ -4,14 +4,13 @@
 //! their wall times (machine-dependent).
 
 use super::markdown::{Table, opt, order, sci};
-use super::work_tables::{RACE_SCENES, RACE_TARGETS, time_reach};
+use super::work_precision::{RACE_SCENES, RACE_TARGETS, time_reach};
 use crate::peer::PEER_NAME;
 use crate::suite::adaptive::AdaptiveRecords;
 use crate::suite::work_precision::WorkTiming;
 use std::fmt::Write as _;
-use stepladder::study::adaptive::ladder::{
-    ENERGY_PERIODS, GEOMETRY_TOLERANCE, MIN_FIT_POINTS, ROUND_OFF_SHARE, ToleranceLadderRecord,
-};
+use stepladder::study::adaptive::ladder::{ENERGY_PERIODS, GEOMETRY_TOLERANCE, ROUND_OFF_SHARE};
+use stepladder::study::adaptive::record::{MIN_FIT_POINTS, ToleranceLadderRecord};
 use stepladder::study::cost::work_points::cost_to_reach;
 use stepladder::tolerance::ERROR_CEILING;
 
