@@ -230,7 +230,7 @@ fn study<T>(result: Result<T, crate::error::Error>) -> T {
 
 /// The failure message of an order record, or `None` if it passed.
 pub fn order_failure(r: &OrderRecord) -> Option<String> {
-    use crate::study::wording::{figure, order};
+    use crate::wording::{figure, order};
     (r.verdict != Verdict::Pass).then(|| {
         let ladder = match (r.rungs.first(), r.rungs.last()) {
             (Some(a), Some(b)) => {
@@ -259,7 +259,7 @@ pub fn order_failure(r: &OrderRecord) -> Option<String> {
 /// measured, so that a floor set by the solve's own tolerance shows where
 /// it comes from. Empty for a scheme that reports none.
 fn solves_beside_errors(rungs: &[crate::study::accuracy::rung::Rung]) -> String {
-    use crate::study::wording::figure;
+    use crate::wording::figure;
     let reported: Vec<(f64, f64, crate::scheme::SolveTally)> = rungs
         .iter()
         .filter_map(|g| Some((g.h, g.error.or(g.half_step_difference)?, g.solve?)))
@@ -304,7 +304,7 @@ pub fn reverse_failure(r: &ReverseRecord) -> Option<String> {
             r.claimed,
             r.verdict.name(),
             r.steps,
-            crate::study::wording::figure(r.h),
+            crate::wording::figure(r.h),
             r.reason
         )
     })
@@ -320,7 +320,7 @@ pub fn energy_failure(r: &EnergyRecord) -> Option<String> {
             r.expected.name(),
             r.verdict.name(),
             r.steps,
-            crate::study::wording::figure(r.h),
+            crate::wording::figure(r.h),
             r.reason
         )
     })

@@ -101,6 +101,8 @@ pub mod parallel;
 pub mod run;
 #[doc(hidden)]
 pub mod tolerance;
+#[doc(hidden)]
+pub mod wording;
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

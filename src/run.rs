@@ -45,7 +45,7 @@ impl Outcome {
     /// step, for a reason that states the step already: "unstable: blew up
     /// at step 57702 (t = 14.2)".
     pub fn brief(&self) -> String {
-        use crate::study::wording::figure;
+        use crate::wording::figure;
         match self {
             Outcome::Completed => "completed".to_string(),
             Outcome::Unstable { step, time, .. } => {

@@ -154,7 +154,7 @@ pub fn order_verdict(
     measured: f64,
     interval: [f64; 2],
 ) -> Result<Option<String>, String> {
-    use crate::study::wording::{order, vs_lower};
+    use crate::wording::{order, vs_lower};
     let estimate = format!(
         "measured order {} in [{}, {}]",
         order(measured),

@@ -44,8 +44,6 @@ pub mod round_off;
 pub mod stability;
 #[doc(hidden)]
 pub mod verdict;
-#[doc(hidden)]
-pub mod wording;
 
 pub use accuracy::order::{
     DropReason, OrderRecord, OrderReduction, OrderSpec, Reference, Rung, global_order,

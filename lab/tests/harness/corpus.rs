@@ -13,7 +13,7 @@ use stepladder::study::Verdict;
 use stepladder::study::accuracy::order::{OrderRecord, OrderSpec, global_order};
 use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
 use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
-use stepladder::study::wording::comparisons;
+use stepladder::wording::comparisons;
 use stepladder_lab::corpus::broken::{FOREST_RUTH_4_DECIMALS, YOSHIDA6_FIRST_WEIGHT};
 use stepladder_lab::corpus::correct::{KUTTA3, RUTH3, TRAPEZOIDAL};
 use stepladder_lab::corpus::scenes::{FigureEight, HenonHeiles, Pendulum};
@@ -101,7 +101,7 @@ fn the_verdict_corpus_gets_every_verdict_right() {
 /// (`E0`, `f32`, `toda-3`, `h^2` are left alone); a minus sign belongs to
 /// it after a space or an opening bracket.
 fn two_digits(text: &str) -> String {
-    use stepladder::study::wording::{pair_from, significant};
+    use stepladder::wording::{pair_from, significant};
     let chars: Vec<char> = text.chars().collect();
     // (start, end, value, significant digits) of every number
     let mut numbers: Vec<(usize, usize, f64, usize)> = Vec::new();
@@ -230,7 +230,7 @@ fn numbers_in_snapshot_messages_round_to_two_digits_and_names_stay() {
 }
 
 /// Every comparison printed in the corpus (`a > b`, `a <= allowance b`,
-/// read by [`comparisons`], whose grammar is in `study::wording`) holds
+/// read by [`comparisons`], whose grammar is in `wording`) holds
 /// for the figures it prints: in the guards' messages of every claim that
 /// did not pass, and in every reason, passing ones included. A comparison
 /// the reader cannot parse is a failure, not skipped.

@@ -46,7 +46,7 @@
 use crate::maths::window::RoundOffModel;
 use crate::scene::Invariant;
 use crate::study::verdict::Verdict;
-use crate::study::wording::{figure, vs_upper};
+use crate::wording::{figure, vs_upper};
 use serde::Serialize;
 
 /// One rung's account of one invariant.

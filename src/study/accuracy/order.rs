@@ -232,7 +232,7 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         next.reason = format!(
             "{} (at t_end = {} the data could not decide: {})",
             next.reason,
-            crate::study::wording::figure(record.t_end),
+            crate::wording::figure(record.t_end),
             record.reason
         );
         next.shortened_from = Some(t_end);

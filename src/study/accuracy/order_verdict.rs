@@ -10,11 +10,11 @@ use crate::maths::window::median_of;
 use crate::maths::window::{Analysis, RungData, select_window};
 use crate::study::accuracy::rung::{OrderReduction, Reference, Rung};
 use crate::study::verdict::Verdict;
-use crate::study::wording::{figure, order, vs_lower, vs_upper};
 use crate::tolerance::{
     self, ERROR_CEILING, MIN_WINDOW, MIN_WINDOW_HALVINGS, ORDER_TOLERANCE, REFERENCE_RUNGS,
     STALL_ORDER, WINDOW_RUNGS,
 };
+use crate::wording::{figure, order, vs_lower, vs_upper};
 
 /// The verdict on a ladder, why, and what to change when inconclusive.
 pub(crate) struct Judgement {
@@ -707,7 +707,7 @@ mod tests {
             "{}",
             j.reason
         );
-        let printed = crate::study::wording::comparisons(&j.reason).expect("readable");
+        let printed = crate::wording::comparisons(&j.reason).expect("readable");
         assert!(
             !printed.is_empty() && printed.iter().all(|c| c.holds()),
             "{}",

@@ -5,8 +5,8 @@ use crate::scene::Harmonic;
 use crate::scheme::{PhaseError, Scheme};
 use crate::state::State;
 use crate::study::verdict::Verdict;
-use crate::study::wording::{figure, vs_upper};
 use crate::tolerance::{PHASE_COEFFICIENT_TOLERANCE, PHASE_FLOOR, RECURRENCE_ROOT_SLACK};
+use crate::wording::{figure, vs_upper};
 use nalgebra::{Complex, DMatrix, Matrix2, Vector1};
 use serde::Serialize;
 

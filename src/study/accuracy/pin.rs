@@ -568,8 +568,8 @@ fn compare<M: Scheme, S: Scene<D>, const D: usize>(
                  the arithmetic \
                  itself rounds more than when the pin was written (a narrower float type, a \
                  worse-conditioned evaluation)",
-                crate::study::wording::figure(today),
-                crate::study::wording::vs_upper(today / pin.tolerance, "", 4.0),
+                crate::wording::figure(today),
+                crate::wording::vs_upper(today / pin.tolerance, "", 4.0),
             )
         } else {
             String::new()
@@ -582,10 +582,10 @@ fn compare<M: Scheme, S: Scene<D>, const D: usize>(
              when the pin was written. Rewrite the pin with STEPLADDER_UPDATE_PINS=1 if the \
              change is intended",
             pin.steps,
-            crate::study::wording::figure(pin.h()),
+            crate::wording::figure(pin.h()),
             pin.error,
-            crate::study::wording::vs_upper(change.abs(), "tolerance", pin.tolerance),
-            crate::study::wording::figure(change / pin.error),
+            crate::wording::vs_upper(change.abs(), "tolerance", pin.tolerance),
+            crate::wording::figure(change / pin.error),
         ));
     }
     Ok(PinOutcome::Agrees {

@@ -31,8 +31,8 @@ use super::ladder::point;
 use super::record::ToleranceLadderRecord;
 use crate::scene::{Scaled, Scene};
 use crate::study::accuracy::pin::{missing_under_ci, pin_fields, printed, write_pin};
-use crate::study::wording::figure;
 use crate::tolerance::TWIN_SCALE;
+use crate::wording::figure;
 use std::path::{Path, PathBuf};
 
 /// The format the pin files are written in.

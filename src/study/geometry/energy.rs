@@ -19,10 +19,10 @@ use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::study::verdict::Verdict;
-use crate::study::wording::{figure, vs_upper};
 use crate::tolerance::{
     BOUNDED_BELOW, GROWTH_DECADES, LOST_FRACTION, LOST_GROWTH, RANDOM_WALK_BELOW, round_off_energy,
 };
+use crate::wording::{figure, vs_upper};
 use serde::Serialize;
 
 /// Default step, in periods of the scene: 100 steps a period.
@@ -779,7 +779,7 @@ pub fn classify_growth(g: f64) -> EnergyClass {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::wording::comparisons;
+    use crate::wording::comparisons;
 
     /// A completed run of `steps` steps in `f64` whose running maximum
     /// ends at `running`.

@@ -9,8 +9,8 @@ use crate::scheme::Scheme;
 use crate::state::State;
 use crate::study::geometry::energy::MAX_HALVINGS;
 use crate::study::verdict::Verdict;
-use crate::study::wording::{figure, vs_upper};
 use crate::tolerance::reverse_tolerance_ulps;
+use crate::wording::{figure, vs_upper};
 use serde::Serialize;
 
 /// Default step, in periods of the scene.

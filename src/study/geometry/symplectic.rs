@@ -7,8 +7,8 @@ use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::state::State;
 use crate::study::verdict::Verdict;
-use crate::study::wording::{figure, vs_upper};
 use crate::tolerance::SYMPLECTIC_TOLERANCE;
+use crate::wording::{figure, vs_upper};
 use serde::Serialize;
 
 /// Step sizes, in periods of the scene, at which the tangent map is taken by
@@ -226,7 +226,7 @@ fn compared(s: &TangentSample, allowance: f64, count: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::wording::comparisons;
+    use crate::wording::comparisons;
 
     fn sample(h: f64, residual: f64, finite_difference_error: Option<f64>) -> TangentSample {
         TangentSample {
