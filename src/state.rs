@@ -53,6 +53,7 @@ impl<const D: usize> State<D> {
 /// `x` as a plain `f64` when `R` is `f64` (a study's trajectory), `None` in
 /// any other scalar (dual numbers): for schemes that compute in a type of
 /// their own and must know whether they are being differentiated.
+#[doc(hidden)]
 pub fn as_f64<R: Real>(x: R) -> Option<f64> {
     (&x as &dyn std::any::Any).downcast_ref::<f64>().copied()
 }

@@ -169,6 +169,7 @@ impl<S: Scene<D>, const D: usize> Scene<D> for &S {
 }
 
 /// Rejects a parameter that must be a finite, strictly positive number.
+#[doc(hidden)]
 pub fn positive(name: &'static str, value: f64) -> Result<f64, Error> {
     if value.is_finite() && value > 0.0 {
         Ok(value)

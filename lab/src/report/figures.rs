@@ -325,6 +325,8 @@ pub fn earth_sun_orbit(runs: &[TrajectoryRecord]) -> Result<String, std::io::Err
             .configure_series_labels()
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
+            // the orbits are round: the corner is the one place free of data
+            .position(SeriesLabelPosition::UpperLeft)
             .draw()
             .map_err(drawing)?;
         root.present().map_err(drawing)?;
