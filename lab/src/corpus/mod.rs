@@ -329,8 +329,9 @@ pub fn judge(entry: &Entry) -> Result<Outcome, stepladder::error::Error> {
 pub fn judge_all(
     entries: &[Entry],
     threads: usize,
+    finished: &(dyn Fn(usize, &Entry) + Sync),
 ) -> Result<Vec<Outcome>, stepladder::error::Error> {
-    stepladder::parallel::parallel_map(entries, threads, judge, &|_, _| {})
+    stepladder::parallel::parallel_map(entries, threads, judge, finished)
         .into_iter()
         .collect()
 }

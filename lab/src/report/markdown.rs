@@ -114,7 +114,7 @@ pub fn wrap_prose(text: &str) -> String {
 }
 
 /// The indent of a list item's continuation lines: under the item's text.
-fn list_indent(line: &str) -> usize {
+pub fn list_indent(line: &str) -> usize {
     let lead = line.len() - line.trim_start().len();
     let rest = &line[lead..];
     if rest.starts_with("- ") || rest.starts_with("* ") {
@@ -125,56 +125,4 @@ fn list_indent(line: &str) -> usize {
         return lead + digits + 2;
     }
     lead
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn table_renders_and_escapes_pipes() {
-        let mut t = Table::new(&["a", "b"]);
-        t.row(vec!["1".into(), "x|y".into()]);
-        t.row(vec!["2".into()]);
-        assert_eq!(
-            t.render(),
-            "| a | b |\n|---|---|\n| 1 | x\\|y |\n| 2 |  |\n"
-        );
-        assert_eq!(sci(0.000123456), "1.23e-4");
-        assert_eq!(order(1.99949), "1.999");
-    }
-}
-
-#[cfg(test)]
-mod wrap_tests {
-    use super::*;
-
-    #[test]
-    fn prose_is_wrapped_and_tables_are_not() {
-        let long = "word ".repeat(60);
-        let table = format!("| {} |\n", "cell ".repeat(40));
-        let text = format!("{long}\n\n- {long}\n{table}```\n{long}\n```\n");
-        let wrapped = wrap_prose(&text);
-        let fenced = format!("```\n{long}\n```\n");
-        assert!(wrapped.contains(&fenced), "a code block is kept whole");
-        let outside = wrapped.replace(&fenced, "").replace(&table, "");
-        for l in outside.lines() {
-            assert!(l.chars().count() <= PROSE_WIDTH, "{l}");
-        }
-        assert!(wrapped.contains(&table), "the table is kept whole");
-        // the words survive, in order
-        let words = |s: &str| s.split_whitespace().map(str::to_string).collect::<Vec<_>>();
-        assert_eq!(words(&wrapped), words(&text));
-        // a list item's continuation sits under its text
-        let item = wrapped.lines().find(|l| l.starts_with("- ")).unwrap();
-        let after = wrapped.lines().skip_while(|l| *l != item).nth(1).unwrap();
-        assert!(after.starts_with("  word"), "{after}");
-    }
-
-    #[test]
-    fn numbered_items_indent_under_their_text() {
-        assert_eq!(list_indent("12. text"), 4);
-        assert_eq!(list_indent("  - text"), 4);
-        assert_eq!(list_indent("plain"), 0);
-    }
 }

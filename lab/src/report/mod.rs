@@ -4,7 +4,7 @@
 mod adaptive;
 pub mod figures;
 mod hard_cases;
-mod markdown;
+pub mod markdown;
 pub mod pages;
 pub mod plot;
 pub mod round_off;

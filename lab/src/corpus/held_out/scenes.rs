@@ -32,7 +32,7 @@ impl LjTrimer {
     pub(super) const PAIRS: [(usize, usize); 3] = [(0, 1), (1, 2), (0, 2)];
     /// The equilateral minimum, centred on the origin (circumradius
     /// `1/sqrt(3)`).
-    pub(super) const MINIMUM: [f64; 6] = [
+    pub const MINIMUM: [f64; 6] = [
         0.0,
         0.577_350_269_189_625_8,
         -0.5,

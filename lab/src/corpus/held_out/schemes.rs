@@ -571,7 +571,7 @@ pub const TRIPLE_X0: f64 = -1.702_414_383_919_315_3;
 
 /// The Candy-Rozmus sub-steps: position Verlet (`D(1/2) K(1) D(1/2)`)
 /// composed with the triple jump `x1, x0, x1`.
-pub(super) const CANDY_ROZMUS_SEQUENCE: [(Sub, f64); 7] = [
+pub const CANDY_ROZMUS_SEQUENCE: [(Sub, f64); 7] = [
     (Sub::Drift, 0.5 * TRIPLE_X1),
     (Sub::Kick, TRIPLE_X1),
     (Sub::Drift, 0.5 * (TRIPLE_X1 + TRIPLE_X0)),
