@@ -191,35 +191,6 @@ fn a_verdict_that_is_not_a_pass_exits_with_status_1() {
     assert!(text.contains("to decide: "), "{text}");
 }
 
-/// The command writes the report where it is told, on one thread, and its
-/// deterministic part is the one the library renders from the suite run on
-/// every core: the results do not depend on the thread count.
-#[test]
-fn report_writes_where_told_on_one_thread_the_same_report() {
-    let dir = std::env::temp_dir().join(format!("stepladder-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("R.md");
-    let out = run(&[
-        "report",
-        "--threads",
-        "1",
-        "--output",
-        path.to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let written = std::fs::read_to_string(&path).unwrap();
-    let expected = stepladder_lab::report::deterministic(crate::common::suite());
-    assert!(
-        stepladder_lab::report::deterministic_part(&written) == expected,
-        "the one-thread report differs from the suite's"
-    );
-    std::fs::remove_dir_all(&dir).unwrap();
-}
-
 /// An unwritable path is refused before the suite runs (at once, not after
 /// a minute of work), with exit status 2 and nothing written or printed.
 #[test]

@@ -14,6 +14,43 @@ fn committed_report_is_up_to_date() {
     );
 }
 
+/// Records do not depend on the thread count or on what ran beside them:
+/// every fifth case and every tenth corpus entry, run again alone on this
+/// thread, give the records the suite got on every core. A shift in the
+/// parallel map's output order or state shared between cases would show
+/// here; rerunning a sample instead of the whole suite keeps that evidence
+/// at a tenth of the suite's cost.
+#[test]
+fn records_do_not_depend_on_the_thread_count() {
+    use stepladder_lab::corpus::{entries, judge};
+    use stepladder_lab::suite::{all_cases, run_case};
+    let suite = super::common::suite();
+    let cases = all_cases();
+    assert_eq!(cases.len(), suite.cases.len());
+    for (i, case) in cases.iter().enumerate().step_by(5) {
+        let alone = run_case(case.as_ref()).expect("the case ran in the suite");
+        let shared = &suite.cases[i];
+        let what = format!("{} on {}", case.scheme().id, case.scene().id);
+        assert_eq!(alone.order, shared.order, "order of {what}");
+        assert_eq!(
+            alone.hidden_order, shared.hidden_order,
+            "hidden order of {what}"
+        );
+        assert_eq!(alone.energy, shared.energy, "energy of {what}");
+        assert_eq!(
+            alone.symplectic, shared.symplectic,
+            "symplecticity of {what}"
+        );
+        assert_eq!(alone.reverse, shared.reverse, "reversibility of {what}");
+    }
+    let entries = entries();
+    assert_eq!(entries.len(), suite.corpus.len());
+    for (i, entry) in entries.iter().enumerate().step_by(10) {
+        let alone = judge(entry).expect("the entry was judged in the suite");
+        assert_eq!(alone, suite.corpus[i], "corpus entry {i}");
+    }
+}
+
 /// The files committed in `dir` are `fresh`, file for file, with none
 /// missing and none left over.
 fn assert_folder_is(dir: &std::path::Path, fresh: &[(String, String)], what: &str) {
