@@ -348,18 +348,15 @@ fn report(args: &ReportArgs) -> Result<ExitCode, Error> {
     }
     report::check_writable(&args.output)?;
     let show = std::io::stderr().is_terminal();
-    let records = run_suite(
-        args.threads.unwrap_or_else(default_threads),
-        &|done, total, c| {
-            if show {
-                eprint!(
-                    "\r\x1b[2K[{done}/{total}] {} on {}",
-                    c.scheme().id,
-                    c.scene().id
-                );
-            }
-        },
-    )?;
+    let records = run_suite(args.threads.unwrap_or_else(default_threads), &|p| {
+        // a terminal sees one line rewritten in place; a pipe or a CI log
+        // sees nothing
+        if show && p.item.is_empty() {
+            eprint!("\r\x1b[2K{}...", p.part);
+        } else if show {
+            eprint!("\r\x1b[2K{} [{}/{}] {}", p.part, p.done, p.total, p.item);
+        }
+    })?;
     if show {
         eprintln!();
     }
@@ -494,7 +491,11 @@ fn corpus(threads: Option<usize>, json: bool) -> Result<ExitCode, Error> {
             expected: "at least 1",
         });
     }
-    let outcomes = judge_all(&entries(), threads.unwrap_or_else(default_threads))?;
+    let outcomes = judge_all(
+        &entries(),
+        threads.unwrap_or_else(default_threads),
+        &|_, _| {},
+    )?;
     let matrix = Confusion::of(&outcomes);
     if json {
         #[derive(Serialize)]

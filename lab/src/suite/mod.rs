@@ -132,30 +132,71 @@ pub fn run_case(c: &dyn Case) -> Result<CaseRecords, Error> {
     })
 }
 
-/// Runs the suite on `threads` threads (at least one), calling
-/// `progress(done, total, case)` as each case finishes.
+/// Where a suite run has got to, for a progress display: the part running,
+/// how many of its items are done, of how many, and the last one finished.
+#[derive(Clone, Copy, Debug)]
+pub struct Progress<'a> {
+    /// The part of the suite: "cases", "hard cases", "corpus", ...
+    pub part: &'static str,
+    /// Items of the part finished so far.
+    pub done: usize,
+    /// Items of the part.
+    pub total: usize,
+    /// The item that just finished (empty when a part starts).
+    pub item: &'a str,
+}
+
+/// Runs the suite on `threads` threads (at least one), calling `progress`
+/// as each part starts and as each case or corpus entry finishes.
 pub fn run_suite(
     threads: usize,
-    progress: &(dyn Fn(usize, usize, &dyn Case) + Sync),
+    progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<SuiteRecords, Error> {
     let cases = all_cases();
     let start = Instant::now();
     let threads = threads.clamp(1, cases.len().max(1));
     let total = cases.len();
     let cases = parallel_map(&cases, threads, |c| run_case(c.as_ref()), &|done, c| {
-        progress(done, total, c.as_ref())
+        let item = format!("{} on {}", c.scheme().id, c.scene().id);
+        progress(Progress {
+            part: "cases",
+            done,
+            total,
+            item: &item,
+        })
     })
     .into_iter()
     .collect::<Result<Vec<_>, Error>>()?;
+    let starting = |part| {
+        progress(Progress {
+            part,
+            done: 0,
+            total: 1,
+            item: "",
+        })
+    };
     let (phase, stability) = scheme_ids()
         .into_iter()
         .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
         .unzip();
     let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
+    starting("hard cases");
     let hard = run_hard_jobs(hard_jobs(), threads)?;
-    let corpus = crate::corpus::judge_all(&crate::corpus::entries(), threads)?;
+    let entries = crate::corpus::entries();
+    let corpus = crate::corpus::judge_all(&entries, threads, &|done, e| {
+        let item = format!("{} on {}", e.case.scheme().id, e.case.scene().id);
+        progress(Progress {
+            part: "verdict corpus",
+            done,
+            total: entries.len(),
+            item: &item,
+        })
+    })?;
+    starting("round-off floors");
     let roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
+    starting("speed against error");
     let (work, work_timing, speed) = speed_against_error(&cases, threads);
+    starting("adaptive step control");
     let adaptive = crate::suite::adaptive::adaptive_study(threads)?;
     Ok(SuiteRecords {
         cases,

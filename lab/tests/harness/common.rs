@@ -7,7 +7,7 @@ use stepladder_lab::suite::{SuiteRecords, run_suite};
 /// Every study on every scheme and scene, run once for the whole binary.
 pub fn suite() -> &'static SuiteRecords {
     static SUITE: OnceLock<SuiteRecords> = OnceLock::new();
-    SUITE.get_or_init(|| run_suite(default_threads(), &|_, _, _| {}).expect("the suite runs"))
+    SUITE.get_or_init(|| run_suite(default_threads(), &|_| {}).expect("the suite runs"))
 }
 
 /// The workspace root: the repository that holds REPORT.md, the figures,
