@@ -848,33 +848,35 @@ pub fn rung_table(r: &OrderRecord) -> String {
 }
 
 fn timings(records: &SuiteRecords) -> String {
+    let total = records.total.as_secs_f64();
     let mut out = format!(
-        "\n## Timings (machine-dependent)\n\nWhole suite: {:.2} s on {} threads.\n\n",
-        records.total.as_secs_f64(),
+        "\n## Timings (machine-dependent)\n\nWhole suite: {total:.2} s on {} threads, part by part:\n\n",
         records.threads
     );
+    let mut t = Table::new(&["part", "wall time", "share"]);
+    for (part, time) in &records.parts {
+        let s = time.as_secs_f64();
+        t.row(vec![
+            (*part).to_string(),
+            format!("{s:.2} s"),
+            format!("{:.0}%", 100.0 * s / total),
+        ]);
+    }
+    out.push_str(&t.render());
     let _ = writeln!(
         out,
-        "Round-off floors and long runs (included above): {:.2} s.\n",
-        records.roundoff.time.as_secs_f64()
-    );
-    let _ = writeln!(
-        out,
-        "Hard cases: {:.2} s of work over {} steps, shared among the same threads.\n",
+        "\nHard cases: {:.2} s of work over {} steps, shared among the same threads.\n",
         records.hard.work.as_secs_f64(),
         records.hard.steps()
     );
-    let mut t = Table::new(&["scheme", "scene", "steps", "wall time", "ns per step"]);
+    // a case's time covers all five studies (the order study's twins and
+    // its withheld-solution rerun included), so no step count divides it
+    let mut t = Table::new(&["scheme", "scene", "wall time of its studies"]);
     for c in &records.cases {
-        let steps: u64 = c.order.rungs.iter().map(|g| g.steps).sum::<u64>()
-            + c.energy.steps
-            + 2 * c.reverse.steps;
         t.row(vec![
             format!("`{}`", c.order.scheme),
             format!("`{}`", c.order.scene),
-            steps.to_string(),
             format!("{:.1} ms", c.time.as_secs_f64() * 1e3),
-            format!("{:.1}", c.time.as_secs_f64() * 1e9 / steps.max(1) as f64),
         ]);
     }
     out.push_str(&t.render());

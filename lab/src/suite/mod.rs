@@ -73,6 +73,9 @@ pub struct SuiteRecords {
     pub speed: stepladder::study::cost::step_time::SpeedRecord,
     /// The tolerance ladders of the adaptive integrators.
     pub adaptive: crate::suite::adaptive::AdaptiveRecords,
+    /// Wall time of each part of the suite, in the order they ran (the
+    /// budget of the report command is read off these).
+    pub parts: Vec<(&'static str, Duration)>,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -154,6 +157,12 @@ pub fn run_suite(
 ) -> Result<SuiteRecords, Error> {
     let cases = all_cases();
     let start = Instant::now();
+    let mut parts = Vec::new();
+    let mut lap = Instant::now();
+    let mut part_done = |part: &'static str| {
+        parts.push((part, lap.elapsed()));
+        lap = Instant::now();
+    };
     let threads = threads.clamp(1, cases.len().max(1));
     let total = cases.len();
     let cases = parallel_map(&cases, threads, |c| run_case(c.as_ref()), &|done, c| {
@@ -167,6 +176,12 @@ pub fn run_suite(
     })
     .into_iter()
     .collect::<Result<Vec<_>, Error>>()?;
+    let (phase, stability) = scheme_ids()
+        .into_iter()
+        .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
+        .unzip();
+    let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
+    part_done("cases, phase, stability and scene checks");
     let starting = |part| {
         progress(Progress {
             part,
@@ -175,13 +190,9 @@ pub fn run_suite(
             item: "",
         })
     };
-    let (phase, stability) = scheme_ids()
-        .into_iter()
-        .map(|id| visit_scheme(id, SchemeStudies).expect("catalogue ids are valid"))
-        .unzip();
-    let scenes = AnyScene::all().iter().map(|s| s.visit(CheckOf)).collect();
     starting("hard cases");
     let hard = run_hard_jobs(hard_jobs(), threads)?;
+    part_done("hard cases");
     let entries = crate::corpus::entries();
     let corpus = crate::corpus::judge_all(&entries, threads, &|done, e| {
         let item = format!("{} on {}", e.case.scheme().id, e.case.scene().id);
@@ -192,12 +203,16 @@ pub fn run_suite(
             item: &item,
         })
     })?;
+    part_done("verdict corpus");
     starting("round-off floors");
     let roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
+    part_done("round-off floors and long runs");
     starting("speed against error");
     let (work, work_timing, speed) = speed_against_error(&cases, threads);
+    part_done("speed against error");
     starting("adaptive step control");
     let adaptive = crate::suite::adaptive::adaptive_study(threads)?;
+    part_done("adaptive step control");
     Ok(SuiteRecords {
         cases,
         phase,
@@ -211,6 +226,7 @@ pub fn run_suite(
         work_timing,
         speed,
         adaptive,
+        parts,
         total: start.elapsed(),
         threads,
     })
