@@ -7,6 +7,7 @@ use stepladder::study::case::{Case, case};
 
 pub mod adaptive;
 pub mod hard_cases;
+pub mod race;
 pub mod round_off;
 pub mod work_precision;
 
@@ -73,6 +74,11 @@ pub struct SuiteRecords {
     pub speed: stepladder::study::cost::step_time::SpeedRecord,
     /// The tolerance ladders of the adaptive integrators.
     pub adaptive: crate::suite::adaptive::AdaptiveRecords,
+    /// The race of the crate's best against the peers, by force
+    /// evaluations, on the Kepler orbits and the N-body scenes.
+    pub race: crate::suite::race::RaceRecords,
+    /// The same race by wall time (machine-dependent).
+    pub race_timing: Vec<crate::suite::race::RaceRow>,
     /// Wall time of the whole suite.
     pub total: Duration,
     /// Threads used.
@@ -157,6 +163,9 @@ pub fn run_suite(
     let roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
     let (work, work_timing, speed) = speed_against_error(&cases, threads);
     let adaptive = crate::suite::adaptive::adaptive_study(threads)?;
+    let nbody = crate::suite::race::nbody_study(threads);
+    let race = crate::suite::race::race(&work, &adaptive, nbody);
+    let race_timing = crate::suite::race::race_times(&race, &work, &work_timing, &adaptive);
     Ok(SuiteRecords {
         cases,
         phase,
@@ -170,6 +179,8 @@ pub fn run_suite(
         work_timing,
         speed,
         adaptive,
+        race,
+        race_timing,
         total: start.elapsed(),
         threads,
     })
