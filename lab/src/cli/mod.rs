@@ -96,7 +96,8 @@ enum Command {
         json: bool,
     },
     /// Error against cost on one scene: force evaluations and wall time each
-    /// scheme (and the ode_solvers Dop853 peer) needs to reach target errors.
+    /// scheme (and each peer: ode_solvers' Dop853, numeris' Verner 9(8))
+    /// needs to reach target errors.
     Work(WorkArgs),
 }
 

@@ -1,17 +1,12 @@
 //! The report's "Adaptive step control" section: the tolerance ladders of
-//! the crate's own DPRKN6(4) and DPRKN8(6) pairs and the peer
-//! (deterministic), and
-//! their wall times (machine-dependent).
+//! the crate's own DPRKN6(4) and DPRKN8(6) pairs and the peers
+//! (deterministic), and their wall times (machine-dependent).
 
 use super::markdown::{Table, opt, order, sci};
-use super::work_precision::{RACE_SCENES, RACE_TARGETS, time_reach};
-use crate::peer::PEER_NAME;
 use crate::suite::adaptive::AdaptiveRecords;
-use crate::suite::work_precision::WorkTiming;
 use std::fmt::Write as _;
 use stepladder::study::adaptive::ladder::{ENERGY_PERIODS, GEOMETRY_TOLERANCE, ROUND_OFF_SHARE};
 use stepladder::study::adaptive::record::{MIN_FIT_POINTS, ToleranceLadderRecord};
-use stepladder::study::cost::work_points::cost_to_reach;
 use stepladder::tolerance::ERROR_CEILING;
 
 /// The tolerances whose costs the summary table shows.
@@ -151,69 +146,8 @@ pub fn ladder_table(r: &ToleranceLadderRecord) -> String {
 }
 
 /// The wall time of each ladder (machine-dependent).
-pub fn timing_section(records: &AdaptiveRecords, work: &[WorkTiming]) -> String {
-    let mut out = String::from(
-        "\n### The race by time\n\nThe Kepler race of the deterministic part, by wall \
-         time: the crate's fastest adaptive pair (each tolerance's run to `t_end` timed \
-         whole, fastest of several, interpolated to the target like its evaluations) and \
-         the fastest fixed-step catalogue scheme (from the time-to-target table) against \
-         the peer, timed the same way as the pairs.\n\n",
-    );
-    let mut race = Table::new(&[
-        "scene",
-        "target",
-        "fastest own pair",
-        "time",
-        "fastest fixed step",
-        "time",
-        PEER_NAME,
-        "peer / best",
-    ]);
-    for scene in RACE_SCENES {
-        let Some(w) = work.iter().find(|w| w.scene == scene) else {
-            continue;
-        };
-        for target in RACE_TARGETS {
-            let Some(fixed) = w.fastest_global.iter().find(|f| f.target == target) else {
-                continue;
-            };
-            let own = records
-                .ladders
-                .iter()
-                .zip(&records.point_seconds)
-                .filter(|(l, s)| l.scene == scene && !s.is_empty())
-                .filter_map(|(l, s)| {
-                    let points: Vec<(f64, Option<f64>)> = s
-                        .iter()
-                        .zip(&l.points)
-                        .filter(|(t, _)| t.is_finite())
-                        .map(|(&t, p)| (t, p.error))
-                        .collect();
-                    let reach = cost_to_reach(&points, target);
-                    Some((reach.cost()?, reach, l.integrator))
-                })
-                .min_by(|a, b| a.0.total_cmp(&b.0));
-            let best = [own.map(|o| o.0), fixed.seconds.cost()]
-                .into_iter()
-                .flatten()
-                .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.min(x))));
-            race.row(vec![
-                format!("`{scene}`"),
-                format!("{target:.0e}"),
-                own.map_or("none".into(), |o| o.2.to_string()),
-                own.map_or("not reached".into(), |o| time_reach(o.1)),
-                fixed.scheme.map_or("none".into(), |s| format!("`{s}`")),
-                time_reach(fixed.seconds),
-                time_reach(fixed.peer_seconds),
-                match (best, fixed.peer_seconds.cost()) {
-                    (Some(a), Some(b)) => format!("{:.2}", b / a),
-                    _ => "-".into(),
-                },
-            ]);
-        }
-    }
-    out.push_str(&race.render());
-    out.push_str("\n### Adaptive tolerance ladders\n\n");
+pub fn timing_section(records: &AdaptiveRecords) -> String {
+    let mut out = String::from("\n### Adaptive tolerance ladders\n\n");
     let mut t = Table::new(&["integrator", "scene", "wall time"]);
     for (r, time) in records.ladders.iter().zip(&records.times) {
         t.row(vec![

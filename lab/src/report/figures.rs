@@ -104,7 +104,7 @@ pub fn convergence(scene: &str, records: &[&OrderRecord]) -> Result<String, std:
 /// Work against precision on one scene: the largest global error each
 /// scheme reaches against the force evaluations it spends, a panel a family,
 /// and the adaptive integrators (the crate's pairs over their tolerance
-/// ladders, the peer over its tolerances) in a panel of their own.
+/// ladders, the peers over theirs) in a panel of their own.
 pub fn work_precision(
     work: &WorkRecord,
     adaptive: &[ToleranceLadderRecord],
@@ -130,10 +130,10 @@ pub fn work_precision(
             )
         })
         .collect();
-    // the peer's own tolerance ladder, when the suite ran one, is already there
-    if let Some(peer) = work
-        .peer
-        .as_ref()
+    // a peer's own tolerance ladder, when the suite ran one, is already there
+    for peer in work
+        .peers
+        .iter()
         .filter(|p| !adaptive.iter().any(|r| r.integrator == p.peer))
     {
         adaptive_series.push(Series::plain(

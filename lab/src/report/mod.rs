@@ -7,6 +7,7 @@ mod hard_cases;
 pub mod markdown;
 pub mod pages;
 pub mod plot;
+mod race;
 pub mod round_off;
 mod summary;
 mod work_precision;
@@ -50,10 +51,8 @@ pub fn render(records: &SuiteRecords) -> String {
         &records.speed,
         &records.work_timing,
     ));
-    out.push_str(&adaptive::timing_section(
-        &records.adaptive,
-        &records.work_timing,
-    ));
+    out.push_str(&race::timing_section(&records.race_timing));
+    out.push_str(&adaptive::timing_section(&records.adaptive));
     markdown::wrap_prose(&out)
 }
 
@@ -69,8 +68,8 @@ pub fn deterministic(records: &SuiteRecords) -> String {
     let _ = writeln!(
         out,
         "Every integrator of stepladder's catalogue ({} schemes, from explicit Euler to \
-         eighth-order compositions) and {} adaptive ones (the crate's pairs and a peer from \
-         another crate), run on {} scenes with exact solutions and on the hard cases, each claim judged against a measurement: the global \
+         eighth-order compositions) and {} adaptive ones (the crate's pairs and peers from \
+         other crates), run on {} scenes with exact solutions and on the hard cases, each claim judged against a measurement: the global \
          order with a 95% interval, the energy over 10^4 periods, symplecticity, \
          reversibility, the linear stability limit, and the force evaluations a given \
          accuracy costs. **{passed} of {total} verdicts pass.** The summary below says what \
@@ -265,7 +264,7 @@ fn rest_of_report(records: &SuiteRecords) -> String {
     out.push_str(&hard_cases_section(&records.hard));
     out.push_str(&work_precision::deterministic_section(
         &records.work,
-        &records.adaptive.ladders,
+        &records.race,
     ));
     out.push_str(&adaptive::adaptive_section(&records.adaptive));
     out.push_str(&round_off::sections(&records.roundoff));

@@ -57,7 +57,7 @@ const PAGES: [Page; 7] = [
     Page {
         file: "work-evaluations.md",
         title: "Force evaluations to reach each target",
-        holds: "the numbers behind the work-precision figures, scheme by scheme and the \
+        holds: "the numbers behind the work-precision figures, scheme by scheme and each \
                 peer tolerance by tolerance",
         body: |r| work_precision::evaluations_by_target(&r.work),
     },

@@ -3,10 +3,10 @@
 //! (machine-dependent).
 
 use super::markdown::{Table, sci};
-use crate::peer::{PEER_NAME, PEER_TOLERANCES};
+use crate::peer::{PEER_TOLERANCES, peer_names};
+use crate::suite::race::RaceRecords;
 use crate::suite::work_precision::{Cheapest, Fastest, WorkRecord, WorkTiming};
 use std::fmt::Write as _;
-use stepladder::study::adaptive::ToleranceLadderRecord;
 use stepladder::study::cost::step_time::SpeedRecord;
 use stepladder::study::cost::work_points::{
     ENERGY_FLOOR_GUARD, ENERGY_MAX_STEPS, ENERGY_PERIODS, ENERGY_START, Reach, TARGETS, TargetCost,
@@ -66,48 +66,62 @@ pub fn method() -> String {
          runs that bracket it, never extrapolated: `<=` marks a target already met by the \
          cheapest run measured (or by the first run after one that blew up), whose cost is \
          then an upper bound, and `not reached` a target no run met. The cheapest scheme \
-         is the one with the fewest evaluations, an upper bound counting at its value. The peer is the `ode_solvers` \
-         crate's adaptive `Dop853` (Dormand-Prince 8(5,3)) on `y = (q, v)`, at relative \
-         and absolute tolerances {} to {}, one a decade, judged the same way: its error \
-         at every step it takes against the exact solution, its force evaluations from its \
-         own statistics (rejected steps and the initial step-size guess included).\n\n",
+         is the one with the fewest evaluations, an upper bound counting at its value. The peers \
+         are adaptive integrators of other published crates on `y = (q, v)`: the `ode_solvers` \
+         crate's `Dop853` (Dormand-Prince 8(5,3), twelve evaluations a step) and the \
+         `numeris` crate's `RKV98NoInterp` (Verner's 9(8) pair without interpolant stages, \
+         sixteen), at relative and absolute tolerances {} to {}, one a decade, judged the \
+         same way: the error at every step each takes against the exact solution, the force \
+         evaluations counted in the system function it is handed (rejected steps and the \
+         initial step-size guess included; each crate's own statistics report the same \
+         count).\n\n",
         sci(PEER_TOLERANCES[0]),
         sci(PEER_TOLERANCES[PEER_TOLERANCES.len() - 1]),
     )
 }
 
 /// The cheapest scheme per target and scene, global and energy error, with
-/// the peer beside.
+/// the peers beside.
 pub fn cheapest_table(records: &[WorkRecord]) -> String {
-    let mut t = Table::new(&[
-        "scene",
-        "target",
-        "cheapest (global error)",
-        "evaluations",
-        PEER_NAME,
-        "cheapest (energy error)",
-        "evaluations",
-        PEER_NAME,
-    ]);
+    let header = by_target_header("cheapest", "evaluations");
+    let mut t = Table::new(&header.iter().map(String::as_str).collect::<Vec<_>>());
     let who = |c: &Cheapest| c.scheme.map_or("none".into(), |s| format!("`{s}`"));
     for r in records {
         for (g, e) in r.cheapest_global.iter().zip(&r.cheapest_energy) {
-            t.row(vec![
+            let mut row = vec![
                 format!("`{}`", r.scene),
                 format!("{:.0e}", g.target),
                 who(g),
                 evaluations(g.reach),
-                evaluations(g.peer),
-                who(e),
-                evaluations(e.reach),
-                evaluations(e.peer),
-            ]);
+            ];
+            row.extend(peer_cells(&g.peers, evaluations));
+            row.extend([who(e), evaluations(e.reach)]);
+            row.extend(peer_cells(&e.peers, evaluations));
+            t.row(row);
         }
     }
     t.render()
 }
 
-/// One scene's table: force evaluations of every scheme and the peer to
+/// The header of a per-target table: scene and target, then for the global
+/// and the energy error the `best` scheme, its `cost` and every peer's.
+fn by_target_header(best: &str, cost: &str) -> Vec<String> {
+    let mut header = vec!["scene".to_string(), "target".to_string()];
+    for error in ["global", "energy"] {
+        header.extend([format!("{best} ({error} error)"), cost.to_string()]);
+        header.extend(peer_names().iter().map(|p| p.to_string()));
+    }
+    header
+}
+
+/// One cell per peer, `-` where a scene had no peer run.
+fn peer_cells(reaches: &[Reach], show: fn(Reach) -> String) -> Vec<String> {
+    (0..peer_names().len())
+        .map(|i| reaches.get(i).map_or("-".into(), |&r| show(r)))
+        .collect()
+}
+
+/// One scene's table: force evaluations of every scheme and every peer to
 /// reach each target, global and energy error.
 pub fn work_table(r: &WorkRecord) -> String {
     let mut header = vec!["scheme".to_string(), "order".to_string()];
@@ -121,8 +135,8 @@ pub fn work_table(r: &WorkRecord) -> String {
         row.extend(costs(&s.energy_targets));
         t.row(row);
     }
-    if let Some(p) = &r.peer {
-        let mut row = vec![PEER_NAME.to_string(), "8".to_string()];
+    for p in &r.peers {
+        let mut row = vec![p.peer.to_string(), p.order.to_string()];
         row.extend(costs(&p.global_targets));
         row.extend(costs(&p.energy_targets));
         t.row(row);
@@ -130,11 +144,8 @@ pub fn work_table(r: &WorkRecord) -> String {
     t.render()
 }
 
-/// The peer's runs on one scene, tolerance by tolerance.
-pub fn peer_table(r: &WorkRecord) -> String {
-    let Some(p) = &r.peer else {
-        return String::new();
-    };
+/// One peer's runs on one scene, tolerance by tolerance.
+pub fn peer_table(p: &crate::peer::PeerWork) -> String {
     let mut t = Table::new(&[
         "tolerance",
         "evaluations",
@@ -170,127 +181,11 @@ pub fn work_scene(r: &WorkRecord) -> String {
     out
 }
 
-/// The scenes and targets of the race against the adaptive peer: the two
-/// Kepler orbits, from a loose to a tight global error.
-pub const RACE_SCENES: [&str; 2] = ["kepler-circular", "kepler-eccentric"];
-/// See [`RACE_SCENES`].
-pub const RACE_TARGETS: [f64; 3] = [1e-6, 1e-9, 1e-12];
-
-/// The race at equal global error on the Kepler orbits: the cheapest
-/// catalogue scheme (fixed step) and the cheapest of the crate's own adaptive
-/// pairs against the peer, who wins, and the evidence why.
-///
-/// Where the catalogue loses on the eccentric orbit, the evidence is what
-/// the eccentricity costs each side: the cheapest fixed-step cost on the
-/// eccentric orbit over that on the circular one at the same target,
-/// against the same ratio for the peer, whose step follows the pericentre.
-pub fn race_table(records: &[WorkRecord], adaptive: &[ToleranceLadderRecord]) -> String {
-    let mut t = Table::new(&[
-        "scene",
-        "target",
-        "cheapest fixed step",
-        "evaluations",
-        "own adaptive pair",
-        PEER_NAME,
-        "peer / best",
-        "outcome",
-    ]);
-    let find = |scene: &str, target: f64| {
-        records
-            .iter()
-            .find(|r| r.scene == scene)
-            .and_then(|r| r.cheapest_global.iter().find(|c| c.target == target))
-    };
-    // the cheapest of the crate's own pairs that reaches the target
-    let own = |scene: &str, target: f64| {
-        adaptive
-            .iter()
-            .filter(|l| l.scene == scene && l.integrator != PEER_NAME)
-            .filter_map(|l| {
-                let reach = l
-                    .global_targets()
-                    .into_iter()
-                    .find(|c| c.target == target)?
-                    .reach;
-                Some((reach.cost()?, reach, l.integrator))
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map_or((Reach::NotReached, None), |(_, reach, name)| {
-                (reach, Some(name))
-            })
-    };
-    for scene in RACE_SCENES {
-        for target in RACE_TARGETS {
-            let Some(c) = find(scene, target) else {
-                continue;
-            };
-            let (pair, pair_name) = own(scene, target);
-            let best = [c.reach.cost(), pair.cost()]
-                .into_iter()
-                .flatten()
-                .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.min(x))));
-            let ratio = match (best, c.peer.cost()) {
-                (Some(a), Some(b)) => format!("{:.2}", b / a),
-                _ => "-".into(),
-            };
-            let outcome = match (best, c.peer.cost()) {
-                (Some(_), None) => "won: the peer does not reach it".to_string(),
-                (None, _) => {
-                    "lost: neither a catalogue scheme nor an own pair reaches it".to_string()
-                }
-                (Some(a), Some(b)) if a <= b => "won".to_string(),
-                (Some(a), Some(b)) => {
-                    let circular = find(RACE_SCENES[0], target)
-                        .filter(|_| scene != RACE_SCENES[0])
-                        .and_then(|k| k.reach.cost().zip(k.peer.cost()));
-                    match (circular, c.reach.cost()) {
-                        (Some((ka, kb)), Some(fixed)) => format!(
-                            "lost by {:.2}x: the eccentricity costs fixed steps {:.1}x the \
-                             circular orbit's evaluations, the adaptive peer {:.1}x",
-                            a / b,
-                            fixed / ka,
-                            b / kb
-                        ),
-                        _ => format!("lost by {:.2}x", a / b),
-                    }
-                }
-            };
-            t.row(vec![
-                format!("`{scene}`"),
-                format!("{target:.0e}"),
-                c.scheme.map_or("none".into(), |s| format!("`{s}`")),
-                evaluations(c.reach),
-                match pair_name {
-                    Some(name) => format!("{} ({name})", evaluations(pair)),
-                    None => evaluations(pair),
-                },
-                evaluations(c.peer),
-                ratio,
-                outcome,
-            ]);
-        }
-    }
-    t.render()
-}
-
 /// The deterministic part of the section.
-pub fn deterministic_section(records: &[WorkRecord], adaptive: &[ToleranceLadderRecord]) -> String {
+pub fn deterministic_section(records: &[WorkRecord], race: &RaceRecords) -> String {
     let mut out = String::from("\n## Speed against error\n\n");
     out.push_str(&method());
-    out.push_str(
-        "### The race on the Kepler orbits\n\nThe cheapest fixed-step catalogue scheme and \
-         the cheapest of the crate's own adaptive pairs (see the tolerance ladders) against the adaptive \
-         peer at equal global error, by force evaluations (the same race by wall \
-         time is the race-by-time table in the machine-dependent part). \
-         A fixed step pays everywhere for the orbit's fastest part, an adaptive one only \
-         there: where a fixed-step scheme loses on the eccentric orbit, the outcome says \
-         what the eccentricity costs each side. Where DPRKN8(6) wins, the reason is the \
-         equation: for `q'' = a(q)` a Nyström method spends no stages on the velocity's \
-         own derivative, so it reaches order eight with eight force evaluations a step, \
-         where DOP853, written for any first-order system and run on `(q, v)`, spends \
-         twelve.\n\n",
-    );
-    out.push_str(&race_table(records, adaptive));
+    out.push_str(&super::race::race_section(race));
     out.push_str("\n### Cheapest scheme per target\n\n");
     out.push_str(&cheapest_table(records));
     out.push_str(
@@ -301,21 +196,23 @@ pub fn deterministic_section(records: &[WorkRecord], adaptive: &[ToleranceLadder
     out
 }
 
-/// Force evaluations to reach each target, per scene, with the peer's
+/// Force evaluations to reach each target, per scene, with each peer's
 /// tolerances: the numbers behind the work-precision figures.
 pub fn evaluations_by_target(records: &[WorkRecord]) -> String {
     let mut out = String::new();
     for r in records {
         let _ = writeln!(out, "\n## {}\n", r.scene);
         out.push_str(&work_table(r));
-        let _ = writeln!(
-            out,
-            "\n<details><summary>{PEER_NAME} on <code>{}</code>, tolerance by \
-             tolerance</summary>\n",
-            r.scene
-        );
-        out.push_str(&peer_table(r));
-        out.push_str("\n</details>\n");
+        for p in &r.peers {
+            let _ = writeln!(
+                out,
+                "\n<details><summary>{} on <code>{}</code>, tolerance by \
+                 tolerance</summary>\n",
+                p.peer, r.scene
+            );
+            out.push_str(&peer_table(p));
+            out.push_str("\n</details>\n");
+        }
     }
     out
 }
@@ -357,35 +254,27 @@ pub fn speed_table(r: &SpeedRecord) -> String {
     out
 }
 
-/// The fastest scheme per target on one or more scenes, with the peer.
+/// The fastest scheme per target on one or more scenes, with the peers.
 pub fn time_to_target_table(timing: &WorkTiming) -> String {
     time_to_target(std::slice::from_ref(timing))
 }
 
 fn time_to_target(timings: &[WorkTiming]) -> String {
-    let mut t = Table::new(&[
-        "scene",
-        "target",
-        "fastest (global error)",
-        "time",
-        PEER_NAME,
-        "fastest (energy error)",
-        "time",
-        PEER_NAME,
-    ]);
+    let header = by_target_header("fastest", "time");
+    let mut t = Table::new(&header.iter().map(String::as_str).collect::<Vec<_>>());
     let who = |f: &Fastest| f.scheme.map_or("none".into(), |s| format!("`{s}`"));
     for w in timings {
         for (g, e) in w.fastest_global.iter().zip(&w.fastest_energy) {
-            t.row(vec![
+            let mut row = vec![
                 format!("`{}`", w.scene),
                 format!("{:.0e}", g.target),
                 who(g),
                 time_reach(g.seconds),
-                time_reach(g.peer_seconds),
-                who(e),
-                time_reach(e.seconds),
-                time_reach(e.peer_seconds),
-            ]);
+            ];
+            row.extend(peer_cells(&g.peers_seconds, time_reach));
+            row.extend([who(e), time_reach(e.seconds)]);
+            row.extend(peer_cells(&e.peers_seconds, time_reach));
+            t.row(row);
         }
     }
     t.render()
@@ -399,8 +288,9 @@ pub fn timing_section(speed: &SpeedRecord, timings: &[WorkTiming]) -> String {
     out.push_str(
         "\n### Time to target\n\nA scheme's time is its force evaluations to the target \
          times its time per evaluation on the scene (steps of 1/1000 period, fastest of \
-         several runs); the peer's runs are timed whole (set-up and output included, \
-         fastest of several) and interpolated like its evaluations.\n\n",
+         several runs); a peer's runs are timed whole (set-up and output included, \
+         fastest of several, while other jobs of the suite share the machine) and \
+         interpolated like its evaluations.\n\n",
     );
     out.push_str(&time_to_target(timings));
     out

@@ -1,8 +1,8 @@
 //! The tolerance ladder of every adaptive integrator on every built-in
-//! scene: the crate's own DPRKN6(4) and DPRKN8(6) pairs and the
-//! `ode_solvers` peer, through the same [`AdaptiveIntegrator`] trait.
+//! scene: the crate's own DPRKN6(4) and DPRKN8(6) pairs and the peers of
+//! other crates, through the same [`AdaptiveIntegrator`] trait.
 
-use crate::peer::Dop853Peer;
+use crate::peer::{IntegratorVisitor, PEERS, PeerId};
 use crate::suite::work_precision::PEER_REPEATS;
 use std::time::{Duration, Instant};
 use stepladder::error::Error;
@@ -20,12 +20,45 @@ pub enum Adaptive {
     OwnPair6,
     /// [`DPRKN8_ADAPTIVE`].
     OwnPair8,
-    /// [`Dop853Peer`].
-    Peer,
+    /// A peer of another crate.
+    Peer(PeerId),
 }
 
-/// The integrators of the study, in table order.
-pub const INTEGRATORS: [Adaptive; 3] = [Adaptive::OwnPair6, Adaptive::OwnPair8, Adaptive::Peer];
+/// The crate's own pairs, in table order.
+pub const OWN_PAIRS: [Adaptive; 2] = [Adaptive::OwnPair6, Adaptive::OwnPair8];
+
+/// The integrators of the study, in table order: the own pairs, then the
+/// peers.
+pub const INTEGRATORS: [Adaptive; 2 + PEERS.len()] = {
+    let mut all = [Adaptive::OwnPair6; 2 + PEERS.len()];
+    all[1] = Adaptive::OwnPair8;
+    let mut i = 0;
+    while i < PEERS.len() {
+        all[2 + i] = Adaptive::Peer(PEERS[i]);
+        i += 1;
+    }
+    all
+};
+
+impl Adaptive {
+    /// Runs `visitor` on the integrator.
+    pub fn visit<V: IntegratorVisitor>(self, visitor: V) -> V::Output {
+        match self {
+            Adaptive::OwnPair6 => visitor.visit(&DPRKN6_ADAPTIVE),
+            Adaptive::OwnPair8 => visitor.visit(&DPRKN8_ADAPTIVE),
+            Adaptive::Peer(p) => p.visit(visitor),
+        }
+    }
+
+    /// The integrator's name in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Adaptive::OwnPair6 => DPRKN6_ADAPTIVE.name,
+            Adaptive::OwnPair8 => DPRKN8_ADAPTIVE.name,
+            Adaptive::Peer(p) => p.name(),
+        }
+    }
+}
 
 /// The tolerance ladders, one per integrator and scene (integrator-major),
 /// and the wall time they took (machine-dependent).
@@ -37,20 +70,30 @@ pub struct AdaptiveRecords {
     pub times: Vec<Duration>,
     /// For the crate's own pairs, the seconds of each tolerance's run to
     /// `t_end` (the fastest of [`PEER_REPEATS`], timed one at a time after
-    /// the ladders, as the peer's runs are); empty for the peer, whose runs
-    /// the work study times.
+    /// the ladders, so that no run is timed while another job shares the
+    /// machine); empty for a peer, whose runs the race times where it needs
+    /// them ([`crate::suite::race`]).
     pub point_seconds: Vec<Vec<f64>>,
 }
 
-/// The fastest of `repeats` runs of `integrator` at each tolerance.
-struct TimeRuns<'a, I>(&'a I, &'a ToleranceLadderRecord);
-impl<I: AdaptiveIntegrator> SceneVisitor for TimeRuns<'_, I> {
+/// The fastest of `repeats` runs of an integrator at each tolerance of a
+/// ladder.
+struct TimeRuns<'a>(&'a AnyScene, &'a ToleranceLadderRecord);
+impl IntegratorVisitor for TimeRuns<'_> {
+    type Output = Vec<f64>;
+    fn visit<I: AdaptiveIntegrator>(self, integrator: &I) -> Vec<f64> {
+        self.0.visit(TimeRunsOn(integrator, self.1))
+    }
+}
+
+struct TimeRunsOn<'a, I>(&'a I, &'a ToleranceLadderRecord);
+impl<I: AdaptiveIntegrator> SceneVisitor for TimeRunsOn<'_, I> {
     type Output = Vec<f64>;
     fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
         self,
         scene: &S,
     ) -> Self::Output {
-        let TimeRuns(integrator, ladder) = self;
+        let TimeRunsOn(integrator, ladder) = self;
         ladder
             .points
             .iter()
@@ -66,21 +109,16 @@ impl<I: AdaptiveIntegrator> SceneVisitor for TimeRuns<'_, I> {
     }
 }
 
-/// Times the runs of an own pair's ladder (empty for the peer).
-fn point_seconds(
-    integrator: Adaptive,
-    scene: &AnyScene,
-    ladder: &ToleranceLadderRecord,
-) -> Vec<f64> {
-    match integrator {
-        Adaptive::OwnPair6 => scene.visit(TimeRuns(&DPRKN6_ADAPTIVE, ladder)),
-        Adaptive::OwnPair8 => scene.visit(TimeRuns(&DPRKN8_ADAPTIVE, ladder)),
-        Adaptive::Peer => Vec::new(),
+struct LadderOn<'a>(&'a AnyScene, &'a ToleranceLadderSpec);
+impl IntegratorVisitor for LadderOn<'_> {
+    type Output = Result<ToleranceLadderRecord, Error>;
+    fn visit<I: AdaptiveIntegrator>(self, integrator: &I) -> Self::Output {
+        self.0.visit(LadderOnScene(integrator, self.1))
     }
 }
 
-struct LadderOn<'a, I>(&'a I, &'a ToleranceLadderSpec);
-impl<I: AdaptiveIntegrator> SceneVisitor for LadderOn<'_, I> {
+struct LadderOnScene<'a, I>(&'a I, &'a ToleranceLadderSpec);
+impl<I: AdaptiveIntegrator> SceneVisitor for LadderOnScene<'_, I> {
     type Output = Result<ToleranceLadderRecord, Error>;
     fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
         self,
@@ -96,11 +134,7 @@ pub fn ladder_of(
     scene: &AnyScene,
     spec: &ToleranceLadderSpec,
 ) -> Result<ToleranceLadderRecord, Error> {
-    match integrator {
-        Adaptive::OwnPair6 => scene.visit(LadderOn(&DPRKN6_ADAPTIVE, spec)),
-        Adaptive::OwnPair8 => scene.visit(LadderOn(&DPRKN8_ADAPTIVE, spec)),
-        Adaptive::Peer => scene.visit(LadderOn(&Dop853Peer, spec)),
-    }
+    integrator.visit(LadderOn(scene, spec))
 }
 
 /// Every integrator on every built-in scene, with default settings.
@@ -127,7 +161,10 @@ pub fn adaptive_study(threads: usize) -> Result<AdaptiveRecords, Error> {
     };
     for (d, (i, s)) in done.into_iter().zip(jobs) {
         let (r, t) = d?;
-        records.point_seconds.push(point_seconds(i, s, &r));
+        records.point_seconds.push(match i {
+            Adaptive::Peer(_) => Vec::new(),
+            own => own.visit(TimeRuns(s, &r)),
+        });
         records.ladders.push(r);
         records.times.push(t);
     }

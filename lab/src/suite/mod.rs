@@ -7,6 +7,7 @@ use stepladder::study::case::{Case, case};
 
 pub mod adaptive;
 pub mod hard_cases;
+pub mod race;
 pub mod round_off;
 pub mod work_precision;
 
@@ -73,6 +74,11 @@ pub struct SuiteRecords {
     pub speed: stepladder::study::cost::step_time::SpeedRecord,
     /// The tolerance ladders of the adaptive integrators.
     pub adaptive: crate::suite::adaptive::AdaptiveRecords,
+    /// The race of the crate's best against the peers, by force
+    /// evaluations, on the Kepler orbits and the N-body scenes.
+    pub race: crate::suite::race::RaceRecords,
+    /// The same race by wall time (machine-dependent).
+    pub race_timing: Vec<crate::suite::race::RaceRow>,
     /// Wall time of each part of the suite, in the order they ran (the
     /// budget of the report command is read off these).
     pub parts: Vec<(&'static str, Duration)>,
@@ -213,6 +219,11 @@ pub fn run_suite(
     starting("adaptive step control");
     let adaptive = crate::suite::adaptive::adaptive_study(threads)?;
     part_done("adaptive step control");
+    starting("the race against the peers");
+    let nbody = crate::suite::race::nbody_study(threads);
+    let race = crate::suite::race::race(&work, &adaptive, nbody);
+    let race_timing = crate::suite::race::race_times(&race, &work, &work_timing, &adaptive);
+    part_done("the race against the peers");
     Ok(SuiteRecords {
         cases,
         phase,
@@ -226,6 +237,8 @@ pub fn run_suite(
         work_timing,
         speed,
         adaptive,
+        race,
+        race_timing,
         parts,
         total: start.elapsed(),
         threads,

@@ -1,10 +1,10 @@
 //! The work-precision study over the catalogue and the built-in scenes:
 //! for each scene, every scheme's cost of reaching each target error (from
-//! [`stepladder::study::cost::work_points`]), the `ode_solvers` peer beside them
-//! ([`crate::peer`]), the cheapest scheme per target, and, apart
+//! [`stepladder::study::cost::work_points`]), the peers of other crates beside
+//! them ([`crate::peer`]), the cheapest scheme per target, and, apart
 //! from these deterministic records, the wall time it all takes here.
 
-use crate::peer::{PeerTimes, PeerWork, peer_work};
+use crate::peer::{IntegratorVisitor, PEERS, PeerId, PeerTimes, PeerWork, peer_work};
 use serde::Serialize;
 use std::time::Duration;
 use stepladder::error::Error;
@@ -12,6 +12,7 @@ use stepladder::parallel::parallel_map;
 use stepladder::scene::{AnyScene, Scene, SceneVisitor};
 use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
 use stepladder::study::accuracy::order::{OrderRecord, OrderSpec};
+use stepladder::study::adaptive::AdaptiveIntegrator;
 use stepladder::study::case::case;
 use stepladder::study::cost::step_time::{SPEED_STEP, time_run};
 use stepladder::study::cost::work_points::{
@@ -25,11 +26,11 @@ pub const WORK_TIMING_STEPS: u64 = 4_000;
 /// Timed runs per scheme and scene; the minimum is kept.
 pub const WORK_TIMING_REPEATS: usize = 5;
 
-/// Timed runs of the peer per tolerance; the minimum is kept.
+/// Timed runs of a peer per tolerance; the minimum is kept.
 pub const PEER_REPEATS: usize = 3;
 
-/// The cheapest catalogue scheme at one target error, with the peer beside.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+/// The cheapest catalogue scheme at one target error, with the peers beside.
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Cheapest {
     /// The target error.
     pub target: f64,
@@ -37,8 +38,9 @@ pub struct Cheapest {
     pub scheme: Option<&'static str>,
     /// Its cost.
     pub reach: Reach,
-    /// The peer's cost of the same target.
-    pub peer: Reach,
+    /// Each peer's cost of the same target, in the order of
+    /// [`crate::peer::PEERS`].
+    pub peers: Vec<Reach>,
 }
 
 /// The work-precision study on one scene (deterministic: costs are force
@@ -57,8 +59,9 @@ pub struct WorkRecord {
     pub targets: Vec<f64>,
     /// Every scheme, in catalogue order.
     pub schemes: Vec<SchemeWork>,
-    /// The peer (`None` only for a scene it cannot run).
-    pub peer: Option<PeerWork>,
+    /// The peers, in the order of [`crate::peer::PEERS`] (none on a scene
+    /// without an exact solution).
+    pub peers: Vec<PeerWork>,
     /// The cheapest scheme per target global error.
     pub cheapest_global: Vec<Cheapest>,
     /// The cheapest scheme per target energy error.
@@ -76,8 +79,8 @@ pub struct SchemeTiming {
     pub ns_per_evaluation: f64,
 }
 
-/// The fastest catalogue scheme at one target error, with the peer beside.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+/// The fastest catalogue scheme at one target error, with the peers beside.
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Fastest {
     /// The target error.
     pub target: f64,
@@ -85,31 +88,31 @@ pub struct Fastest {
     pub scheme: Option<&'static str>,
     /// Its time, in seconds.
     pub seconds: Reach,
-    /// The peer's time for the same target, in seconds.
-    pub peer_seconds: Reach,
+    /// Each peer's time for the same target, in seconds.
+    pub peers_seconds: Vec<Reach>,
 }
 
 /// The work-precision study's wall times on one scene (machine-dependent).
 /// A scheme's time for a run is its force evaluations times its measured
-/// time per evaluation on the scene; the peer's runs are timed directly.
+/// time per evaluation on the scene; the peers' runs are timed directly.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct WorkTiming {
     /// Scene id.
     pub scene: &'static str,
     /// Every scheme, in catalogue order.
     pub schemes: Vec<SchemeTiming>,
-    /// The peer's run times.
-    pub peer: PeerTimes,
+    /// Each peer's run times, in the order of [`WorkRecord::peers`].
+    pub peers: Vec<PeerTimes>,
     /// The fastest scheme per target global error.
     pub fastest_global: Vec<Fastest>,
     /// The fastest scheme per target energy error.
     pub fastest_energy: Vec<Fastest>,
 }
 
-/// One piece of the study: a scheme on a scene, or the peer on a scene.
+/// One piece of the study: a scheme on a scene, or a peer on a scene.
 enum Job<'a> {
     Scheme(&'a AnyScene, &'a OrderRecord),
-    Peer(&'a AnyScene),
+    Peer(&'a AnyScene, PeerId),
 }
 
 enum Done {
@@ -136,16 +139,23 @@ impl<M: Scheme + Sync + 'static> SceneVisitor for WorkOf<'_, M> {
     }
 }
 
-struct PeerOn {
-    t_end: f64,
+struct PeerOn<'a>(&'a AnyScene);
+impl IntegratorVisitor for PeerOn<'_> {
+    type Output = Option<(PeerWork, PeerTimes)>;
+    fn visit<I: AdaptiveIntegrator>(self, peer: &I) -> Self::Output {
+        self.0.visit(PeerOnScene(peer))
+    }
 }
-impl SceneVisitor for PeerOn {
+
+struct PeerOnScene<'a, I>(&'a I);
+impl<I: AdaptiveIntegrator> SceneVisitor for PeerOnScene<'_, I> {
     type Output = Option<(PeerWork, PeerTimes)>;
     fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
         self,
         scene: &S,
     ) -> Self::Output {
-        peer_work(scene, self.t_end, ENERGY_PERIODS, PEER_REPEATS)
+        let t_end = scene.default_t_end();
+        peer_work(self.0, scene, t_end, ENERGY_PERIODS, PEER_REPEATS)
     }
 }
 
@@ -198,10 +208,10 @@ pub fn scheme_timings(scene: &AnyScene) -> Vec<SchemeTiming> {
 }
 
 /// The cheapest scheme at each target, from per-scheme target costs, with
-/// the peer's beside.
+/// each peer's beside.
 pub fn cheapest_per_target(
     schemes: &[(&'static str, &[TargetCost])],
-    peer: Option<&[TargetCost]>,
+    peers: &[&[TargetCost]],
 ) -> Vec<Cheapest> {
     TARGETS
         .iter()
@@ -216,20 +226,21 @@ pub fn cheapest_per_target(
                 target,
                 scheme: best.map(|b| b.0),
                 reach: best.map_or(Reach::NotReached, |b| b.1),
-                peer: peer
-                    .and_then(|p| p.get(i))
-                    .map_or(Reach::NotReached, |c| c.reach),
+                peers: peers
+                    .iter()
+                    .map(|p| p.get(i).map_or(Reach::NotReached, |c| c.reach))
+                    .collect(),
             }
         })
         .collect()
 }
 
-/// The deterministic record of one scene from its schemes' and peer's work.
+/// The deterministic record of one scene from its schemes' and peers' work.
 fn record(
     scene: &AnyScene,
     t_end: f64,
     schemes: Vec<SchemeWork>,
-    peer: Option<PeerWork>,
+    peers: Vec<PeerWork>,
 ) -> WorkRecord {
     let global: Vec<(&'static str, &[TargetCost])> = schemes
         .iter()
@@ -239,10 +250,12 @@ fn record(
         .iter()
         .map(|s| (s.scheme, s.energy_targets.as_slice()))
         .collect();
-    let cheapest_global =
-        cheapest_per_target(&global, peer.as_ref().map(|p| p.global_targets.as_slice()));
-    let cheapest_energy =
-        cheapest_per_target(&energy, peer.as_ref().map(|p| p.energy_targets.as_slice()));
+    let peer_global: Vec<&[TargetCost]> =
+        peers.iter().map(|p| p.global_targets.as_slice()).collect();
+    let peer_energy: Vec<&[TargetCost]> =
+        peers.iter().map(|p| p.energy_targets.as_slice()).collect();
+    let cheapest_global = cheapest_per_target(&global, &peer_global);
+    let cheapest_energy = cheapest_per_target(&energy, &peer_energy);
     let meta = scene.meta();
     WorkRecord {
         scene: meta.id,
@@ -251,18 +264,18 @@ fn record(
         energy_periods: ENERGY_PERIODS,
         targets: TARGETS.to_vec(),
         schemes,
-        peer,
+        peers,
         cheapest_global,
         cheapest_energy,
     }
 }
 
-/// The fastest scheme at each target, and the peer's time beside: times
-/// are evaluations times the scheme's time per evaluation; the peer's are
+/// The fastest scheme at each target, and each peer's time beside: times
+/// are evaluations times the scheme's time per evaluation; a peer's are
 /// interpolated between its timed runs.
-fn timing(record: &WorkRecord, schemes: Vec<SchemeTiming>, peer: PeerTimes) -> WorkTiming {
+fn timing(record: &WorkRecord, schemes: Vec<SchemeTiming>, peers: Vec<PeerTimes>) -> WorkTiming {
     let fastest = |targets: &dyn Fn(&SchemeWork) -> &[TargetCost],
-                   peer_points: Option<Vec<(f64, Option<f64>)>>| {
+                   peer_points: &[Vec<(f64, Option<f64>)>]| {
         TARGETS
             .iter()
             .enumerate()
@@ -281,33 +294,39 @@ fn timing(record: &WorkRecord, schemes: Vec<SchemeTiming>, peer: PeerTimes) -> W
                     target,
                     scheme: best.map(|b| b.0),
                     seconds: best.map_or(Reach::NotReached, |b| b.1),
-                    peer_seconds: peer_points
-                        .as_ref()
-                        .map_or(Reach::NotReached, |p| cost_to_reach(p, target)),
+                    peers_seconds: peer_points
+                        .iter()
+                        .map(|p| cost_to_reach(p, target))
+                        .collect(),
                 }
             })
             .collect()
     };
-    let peer_points = |points: Option<&Vec<crate::peer::PeerPoint>>, times: &[f64]| {
-        points.map(|p| {
-            p.iter()
-                .zip(times)
-                .map(|(p, &t)| (t, p.error))
-                .collect::<Vec<_>>()
-        })
+    // each peer's run seconds against their errors, global or energy runs
+    let timed = |runs: fn(&PeerWork) -> &[crate::peer::PeerPoint],
+                 times: fn(&PeerTimes) -> &[f64]|
+     -> Vec<Vec<(f64, Option<f64>)>> {
+        record
+            .peers
+            .iter()
+            .zip(&peers)
+            .map(|(w, t)| {
+                runs(w)
+                    .iter()
+                    .zip(times(t))
+                    .map(|(p, &t)| (t, p.error))
+                    .collect()
+            })
+            .collect()
     };
-    let fastest_global = fastest(
-        &|w| w.global_targets.as_slice(),
-        peer_points(record.peer.as_ref().map(|p| &p.global), &peer.global),
-    );
-    let fastest_energy = fastest(
-        &|w| w.energy_targets.as_slice(),
-        peer_points(record.peer.as_ref().map(|p| &p.energy), &peer.energy),
-    );
+    let global = timed(|w| &w.global, |t| &t.global);
+    let energy = timed(|w| &w.energy, |t| &t.energy);
+    let fastest_global = fastest(&|w| w.global_targets.as_slice(), &global);
+    let fastest_energy = fastest(&|w| w.energy_targets.as_slice(), &energy);
     WorkTiming {
         scene: record.scene,
         schemes,
-        peer,
+        peers,
         fastest_global,
         fastest_energy,
     }
@@ -315,7 +334,7 @@ fn timing(record: &WorkRecord, schemes: Vec<SchemeTiming>, peer: PeerTimes) -> W
 
 /// The work study on `scenes`, given every scheme's order record on each
 /// (`orders[i]` for `scenes[i]`, in catalogue order): the schemes' and the
-/// peer's runs in parallel on `threads` threads, then the timings one at a
+/// peers' runs in parallel on `threads` threads, then the timings one at a
 /// time, so that they do not compete for the machine.
 pub fn work_study(
     scenes: &[AnyScene],
@@ -325,7 +344,7 @@ pub fn work_study(
     let ids = scheme_ids();
     let mut jobs: Vec<Job> = Vec::new();
     for (scene, records) in scenes.iter().zip(orders) {
-        jobs.push(Job::Peer(scene));
+        jobs.extend(PEERS.iter().map(|&p| Job::Peer(scene, p)));
         for r in records {
             jobs.push(Job::Scheme(scene, r));
         }
@@ -337,10 +356,7 @@ pub fn work_study(
             Job::Scheme(scene, r) => Done::Scheme(
                 visit_scheme(r.scheme, SchemeOnScene(scene, r)).expect("catalogue ids"),
             ),
-            Job::Peer(scene) => {
-                let t_end = scene.visit(DefaultEnd);
-                Done::Peer(scene.visit(PeerOn { t_end }))
-            }
+            Job::Peer(scene, peer) => Done::Peer(peer.visit(PeerOn(scene))),
         },
         &|_, _| {},
     )
@@ -348,10 +364,13 @@ pub fn work_study(
     let mut records = Vec::new();
     let mut timings = Vec::new();
     for (scene, r) in scenes.iter().zip(orders) {
-        let peer = match done.next() {
-            Some(Done::Peer(p)) => p,
-            _ => unreachable!("jobs are in order"),
-        };
+        let (peer_work, peer_times): (Vec<PeerWork>, Vec<PeerTimes>) = PEERS
+            .iter()
+            .filter_map(|_| match done.next() {
+                Some(Done::Peer(p)) => p,
+                _ => unreachable!("jobs are in order"),
+            })
+            .unzip();
         let schemes: Vec<SchemeWork> = (0..r.len())
             .map(|_| match done.next() {
                 Some(Done::Scheme(w)) => w,
@@ -359,16 +378,11 @@ pub fn work_study(
             })
             .collect();
         debug_assert!(schemes.iter().zip(&ids).all(|(w, id)| w.scheme == *id));
-        let (peer_work, peer_times) = peer.unzip();
         // the work points are over the scene's default t_end, whatever the
         // order study settled on (see `scheme_work`)
         let t_end = scene.visit(DefaultEnd);
         let rec = record(scene, t_end, schemes, peer_work);
-        timings.push(timing(
-            &rec,
-            scheme_timings(scene),
-            peer_times.unwrap_or_default(),
-        ));
+        timings.push(timing(&rec, scheme_timings(scene), peer_times));
         records.push(rec);
     }
     (records, timings)

@@ -1,9 +1,12 @@
 //! The tolerance ladders of the suite: the crate's own adaptive pairs
-//! against their controllers' theory, the peer measured alike.
+//! against their controllers' theory, the peers measured alike.
 
 use stepladder::study::Verdict;
+use stepladder::study::adaptive::AdaptiveClaim;
 use stepladder::study::adaptive::RunEnd;
 use stepladder::study::geometry::energy::EnergyClass;
+use stepladder_lab::peer::PeerId;
+use stepladder_lab::suite::adaptive::INTEGRATORS;
 
 /// DPRKN6(4) with local extrapolation: error ~ TOL^(6/5) on both orbits,
 /// its energy drifting and its round trip missing the start, as a
@@ -65,12 +68,43 @@ fn the_eighth_order_pair_is_proportional_or_its_method_pre_asymptotic() {
     }
 }
 
+/// Verner's 9(8) pair advances with its ninth-order solution and controls
+/// an estimate `~ h^9`: error `~ TOL^(9/9)`. On both orbits the fitted
+/// exponent's interval must hold 1, and the evaluations its statistics
+/// report must be those its system function was called for.
+#[test]
+fn the_verner_peer_is_tolerance_proportional_with_exponent_one_on_the_orbits() {
+    let ladders = &super::common::suite().adaptive.ladders;
+    for scene in ["kepler-circular", "kepler-eccentric"] {
+        let r = ladders
+            .iter()
+            .find(|r| r.integrator == PeerId::Verner98.name() && r.scene == scene)
+            .expect("the peer on every scene");
+        let p = r.proportionality.expect("an exponent");
+        assert_eq!(p.theory, Some(1.0));
+        assert!(p.agrees(), "{scene}: {}", r.reason);
+        let counted = r
+            .claim(AdaptiveClaim::Evaluations)
+            .expect("reported counts");
+        assert_eq!(
+            counted.verdict,
+            Verdict::Pass,
+            "{scene}: {}",
+            counted.reason
+        );
+        assert_eq!(r.verdict, Verdict::Pass, "{scene}: {}", r.reason);
+    }
+}
+
 /// Every ladder runs every tolerance to its end, and tighter tolerances
 /// never cost fewer evaluations.
 #[test]
 fn every_ladder_reaches_t_end_and_costs_more_as_the_tolerance_tightens() {
     let ladders = &super::common::suite().adaptive.ladders;
-    assert_eq!(ladders.len(), 12);
+    assert_eq!(
+        ladders.len(),
+        INTEGRATORS.len() * stepladder::scene::AnyScene::all().len()
+    );
     for r in ladders {
         assert!(
             r.points.iter().all(|p| p.end == RunEnd::Reached),

@@ -307,9 +307,16 @@ fn work_json_has_targets_schemes_peer_and_timings() {
             assert!(p["evaluations"].as_u64().unwrap() >= p["steps"].as_u64().unwrap());
         }
     }
-    let peer = &v["peer"];
-    assert_eq!(peer["peer"], "ode_solvers Dop853");
-    assert!(!peer["global"].as_array().unwrap().is_empty());
+    let peers: Vec<&str> = v["peers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            assert!(!p["global"].as_array().unwrap().is_empty(), "{p}");
+            p["peer"].as_str().unwrap()
+        })
+        .collect();
+    assert_eq!(peers, stepladder_lab::peer::peer_names());
     for key in ["cheapest_global", "cheapest_energy"] {
         assert_eq!(v[key].as_array().unwrap().len(), targets.len());
     }

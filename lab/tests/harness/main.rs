@@ -21,6 +21,7 @@ mod order;
 mod order_conditions;
 mod pins;
 mod properties;
+mod race;
 mod report;
 mod roundoff;
 mod snapshots;

@@ -36,7 +36,7 @@ fn suite_tables_are_unchanged() {
     .bind(|| insta::assert_snapshot!("stability_table", stability_table(&records.stability)));
     settings(
         "Tolerance ladders of the adaptive integrators (own DPRKN6(4) and DPRKN8(6) \
-         pairs, ode_solvers Dop853) on every scene: the fitted exponent of error ~ TOL^k with its interval and \
+         pairs, ode_solvers Dop853, numeris RKV98NoInterp) on every scene: the fitted exponent of error ~ TOL^k with its interval and \
          theory, evaluations and error at three tolerances, the energy class of a long run \
          and the round trip at TOL = 1e-8, the verdict.",
     )

@@ -6,11 +6,14 @@
 use stepladder::run::integrate;
 use stepladder::scene::{AnyScene, Counted, Harmonic, KeplerCircular, Scene, SceneVisitor};
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
+use stepladder::study::adaptive::{AdaptiveIntegrator, RunEnd};
 use stepladder::study::cost::step_time::{floor_verlet_kepler, run_steps, speed, time_run};
 use stepladder::study::cost::work_points::{
     Reach, TARGETS, TargetCost, WorkPoint, cheapest, cost_to_reach, start_evaluations,
 };
-use stepladder_lab::peer::{peer_targets, run_peer_any};
+use stepladder_lab::peer::{
+    DOP853, NumerisVerner98, OdeSolversDop853, PEERS, PeerId, peer_targets, run_first_order,
+};
 use stepladder_lab::suite::work_precision::cheapest_per_target;
 
 /// The floor runs the same arithmetic as the catalogue's velocity Verlet, so
@@ -334,7 +337,7 @@ fn the_cheapest_choice_on_synthetic_data() {
         cheapest(&[("a", r(20.0)), ("b", Reach::AtMost(15.0))]),
         Some(("b", Reach::AtMost(15.0)))
     );
-    // per target: each target has its own winner, and the peer rides along
+    // per target: each target has its own winner, and the peers ride along
     let costs = |cs: [Reach; 4]| -> Vec<TargetCost> {
         TARGETS
             .iter()
@@ -345,38 +348,53 @@ fn the_cheapest_choice_on_synthetic_data() {
     let low = costs([r(10.0), r(1000.0), Reach::NotReached, Reach::NotReached]);
     let high = costs([r(50.0), r(200.0), r(800.0), Reach::NotReached]);
     let peer = costs([r(5.0), r(100.0), r(300.0), r(900.0)]);
-    let table = cheapest_per_target(&[("low", &low), ("high", &high)], Some(&peer));
+    let other = costs([r(6.0), Reach::NotReached, r(400.0), r(700.0)]);
+    let table = cheapest_per_target(&[("low", &low), ("high", &high)], &[&peer, &other]);
     let winners: Vec<Option<&str>> = table.iter().map(|c| c.scheme).collect();
     assert_eq!(winners, [Some("low"), Some("high"), Some("high"), None]);
     assert_eq!(table[3].reach, Reach::NotReached);
-    assert_eq!(table[3].peer, r(900.0));
+    assert_eq!(table[3].peers, [r(900.0), r(700.0)]);
+    assert_eq!(table[1].peers, [r(100.0), Reach::NotReached]);
 }
 
-/// The peer's own statistics count what its system function sees, it ends
+/// Each peer's own statistics count what its system function sees, it ends
 /// at `t_end`, and its error falls with its tolerance.
 #[test]
-fn the_peer_is_counted_and_judged_like_the_catalogue() {
+fn the_peers_are_counted_and_judged_like_the_catalogue() {
     let scene = KeplerCircular;
     let t_end = scene.default_t_end();
-    let mut errors = Vec::new();
-    for tol in [1e-6, 1e-9, 1e-12] {
-        let run = run_peer_any(&scene, t_end, tol).unwrap();
-        assert_eq!(run.evaluations, run.counted, "tolerance {tol}");
-        assert!(run.evaluations >= 12 * run.accepted, "tolerance {tol}");
-        let (t, _) = run.trajectory.last().unwrap();
-        assert!((t - t_end).abs() <= 1e-12 * t_end);
-        let worst = run
-            .trajectory
-            .iter()
-            .map(|(t, s)| scene.phase_distance(s, &scene.exact(*t).unwrap()))
-            .fold(0.0, f64::max);
-        errors.push(worst);
+    let start = scene.initial();
+    for (peer, stages) in [(PeerId::Dop853, 12), (PeerId::Verner98, 16)] {
+        let mut errors = Vec::new();
+        for tol in [1e-6, 1e-9, 1e-12] {
+            let run = match peer {
+                PeerId::Dop853 => run_first_order(&OdeSolversDop853, &scene, &start, t_end, tol),
+                PeerId::Verner98 => run_first_order(&NumerisVerner98, &scene, &start, t_end, tol),
+            }
+            .unwrap();
+            assert_eq!(run.end, RunEnd::Reached, "{} at {tol}", peer.name());
+            assert_eq!(run.reported, Some(run.counted), "{} at {tol}", peer.name());
+            assert!(
+                run.counted >= stages * run.accepted,
+                "{} at {tol}",
+                peer.name()
+            );
+            let (t, _) = run.trajectory.last().unwrap();
+            assert!((t - t_end).abs() <= 1e-12 * t_end);
+            let worst = run
+                .trajectory
+                .iter()
+                .map(|(t, s)| scene.phase_distance(s, &scene.exact(*t).unwrap()))
+                .fold(0.0, f64::max);
+            errors.push(worst);
+        }
+        assert!(
+            errors[0] > 10.0 * errors[1] && errors[1] > 10.0 * errors[2],
+            "{}: {errors:?}",
+            peer.name()
+        );
     }
-    assert!(
-        errors[0] > 10.0 * errors[1] && errors[1] > 10.0 * errors[2],
-        "{errors:?}"
-    );
-    // a three-dimensional scene has no peer vector here
+    // a three-dimensional scene has no peer vector here: refused, not run
     struct Three;
     impl Scene<3> for Three {
         fn meta(&self) -> stepladder::scene::SceneMeta {
@@ -401,20 +419,31 @@ fn the_peer_is_counted_and_judged_like_the_catalogue() {
             None
         }
     }
-    assert!(run_peer_any(&Three, 1.0, 1e-6).is_none());
+    assert!(DOP853.run(&Three, 1.0, 1e-6).is_err());
+    assert!(run_first_order(&NumerisVerner98, &Three, &Three.initial(), 1.0, 1e-6).is_err());
 }
 
 #[test]
 fn the_peer_targets_follow_its_points() {
     for record in &super::common::suite().work {
-        let peer = record
-            .peer
-            .as_ref()
-            .expect("every built-in scene has a peer");
-        assert_eq!(peer.global.len(), peer.energy.len());
-        assert_eq!(peer_targets(&peer.global), peer.global_targets);
-        for p in &peer.global {
-            assert!(p.evaluations >= 12 * p.accepted, "{}", record.scene);
+        assert_eq!(record.peers.len(), PEERS.len(), "{}", record.scene);
+        for (peer, id) in record.peers.iter().zip(PEERS) {
+            assert_eq!(peer.peer, id.name());
+            assert_eq!(peer.global.len(), peer.energy.len());
+            assert_eq!(peer_targets(&peer.global), peer.global_targets);
+            // no fewer evaluations than the stages of its accepted steps
+            let stages = match id {
+                PeerId::Dop853 => 12,
+                PeerId::Verner98 => 16,
+            };
+            for p in &peer.global {
+                assert!(
+                    p.evaluations >= stages * p.accepted,
+                    "{} on {}",
+                    peer.peer,
+                    record.scene
+                );
+            }
         }
     }
 }

@@ -8,4 +8,5 @@ mod broken;
 mod correct;
 mod held_out;
 mod markdown;
+mod peer;
 mod scenes;

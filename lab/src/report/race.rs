@@ -1,0 +1,224 @@
+//! The race of the crate's best integrator against the peers: by force
+//! evaluations (deterministic), with the N-body references it is judged
+//! against, and by wall time (machine-dependent).
+
+use super::markdown::{Table, sci};
+use super::work_precision::{evaluations, time_reach};
+use crate::peer::peer_names;
+use crate::suite::race::{
+    NBODY_FIRST_STEPS, NBODY_FIRST_TOLERANCE, NbodyRecord, RACE_TARGETS, REFERENCE_SHARE,
+    RaceRecords, RaceRow,
+};
+use stepladder::study::cost::work_points::Reach;
+
+/// A contender's name in a table.
+fn who(name: Option<&str>) -> String {
+    name.map_or("none".into(), |n| {
+        if n.contains(' ') {
+            n.to_string()
+        } else {
+            format!("`{n}`")
+        }
+    })
+}
+
+/// `best peer / crate's best`, two decimals.
+fn ratio(peer: Option<f64>, best: Option<f64>) -> String {
+    match (peer, best) {
+        (Some(p), Some(b)) => format!("{:.2}", p / b),
+        _ => "-".into(),
+    }
+}
+
+/// Who wins a row, and by how much, in words.
+fn outcome(
+    best: Option<f64>,
+    peer: Option<(usize, f64)>,
+    smallest_error: Option<f64>,
+    judged: bool,
+) -> String {
+    let names = peer_names();
+    let verdict = match (best, peer) {
+        (None, None) => match smallest_error {
+            Some(e) => format!(
+                "neither side reaches it: no run's error went below {}",
+                sci(e)
+            ),
+            None => "neither side reaches it".to_string(),
+        },
+        (Some(_), None) => "won: no peer reaches it".to_string(),
+        (None, Some((i, _))) => format!(
+            "lost: no integrator of the crate reaches it, {} does",
+            names[i]
+        ),
+        (Some(a), Some((_, b))) if a <= b => "won".to_string(),
+        (Some(a), Some((i, b))) => format!("lost by {:.2}x to {}", a / b, names[i]),
+    };
+    if judged {
+        verdict
+    } else {
+        format!("not judged (the reference is too coarse): {verdict}")
+    }
+}
+
+/// How a race table speaks of its cost: by force evaluations or by time.
+#[derive(Clone, Copy)]
+enum Unit {
+    Evaluations,
+    Seconds,
+}
+
+/// The race in one unit: per scene and target, the cheapest (or fastest)
+/// fixed-step scheme, the cheapest (or fastest) own pair, every peer, and
+/// who wins.
+fn rows_table(rows: &[RaceRow], unit: Unit) -> String {
+    let (best, cost, show): (&str, &str, fn(Reach) -> String) = match unit {
+        Unit::Evaluations => ("cheapest", "evaluations", evaluations),
+        Unit::Seconds => ("fastest", "time", time_reach),
+    };
+    let (fixed, pair) = (format!("{best} fixed step"), format!("{best} own pair"));
+    let mut header = vec!["scene", "target", fixed.as_str(), cost, pair.as_str(), cost];
+    let peers = peer_names();
+    header.extend(&peers);
+    header.extend(["best peer / crate's best", "outcome"]);
+    let mut t = Table::new(&header);
+    for r in rows {
+        let fixed_cost = match (r.fixed.reach, r.fixed_searched_to, r.fixed.name) {
+            (Reach::NotReached, Some(bound), _) => format!("none below {}", sci(bound)),
+            // no scheme was found below the own pair's cost: the table by
+            // evaluations says where the search stopped
+            (_, _, None) => "-".into(),
+            (reach, _, _) => show(reach),
+        };
+        let mut row = vec![
+            format!("`{}`", r.scene),
+            format!("{:.0e}", r.target),
+            who(r.fixed.name),
+            fixed_cost,
+            who(r.pair.name),
+            show(r.pair.reach),
+        ];
+        row.extend(r.peers.iter().map(|&p| show(p)));
+        row.push(ratio(r.best_peer().map(|p| p.1), r.best()));
+        row.push(outcome(r.best(), r.best_peer(), r.smallest_error, r.judged));
+        t.row(row);
+    }
+    t.render()
+}
+
+/// The race by force evaluations.
+pub fn race_table(rows: &[RaceRow]) -> String {
+    rows_table(rows, Unit::Evaluations)
+}
+
+/// The N-body references: where each comes from, how well it is known,
+/// which targets it judges, and how closely the adaptive contenders'
+/// tightest runs agree with it and with each other.
+pub fn reference_table(records: &[NbodyRecord]) -> String {
+    let mut t = Table::new(&[
+        "scene",
+        "t_end",
+        "reference",
+        "its error",
+        "targets judged",
+        "tightest runs: distance to it",
+        "largest distance between two of them",
+    ]);
+    for r in records {
+        let judged: Vec<String> = RACE_TARGETS
+            .iter()
+            .filter(|&&x| r.reference.judges(x))
+            .map(|x| format!("{x:.0e}"))
+            .collect();
+        let tightest: Vec<String> = r
+            .adaptive
+            .iter()
+            .filter_map(|l| {
+                let p = l.points.last()?;
+                Some(format!(
+                    "{} {} (TOL {})",
+                    l.contender,
+                    p.error.map_or("failed".into(), sci),
+                    sci(p.setting)
+                ))
+            })
+            .collect();
+        t.row(vec![
+            format!("`{}`", r.reference.scene),
+            format!("{}", r.reference.t_end),
+            r.reference.source.to_string(),
+            format!(
+                "{} ({})",
+                sci(r.reference.accuracy),
+                r.reference.accuracy_source
+            ),
+            if judged.is_empty() {
+                "none".into()
+            } else {
+                judged.join(", ")
+            },
+            tightest.join("; "),
+            sci(r.spread),
+        ]);
+    }
+    t.render()
+}
+
+/// The race's part of the deterministic section.
+pub fn race_section(race: &RaceRecords) -> String {
+    let mut out = String::from("### The race\n\n");
+    out.push_str(&format!(
+        "The crate's best integrator against every peer at equal error, by force \
+         evaluations (the same race by wall time is in the machine-dependent part): the \
+         cheapest fixed-step catalogue scheme and the cheapest of the crate's own adaptive \
+         pairs on one side, each peer on the other. On the Kepler orbits the error is the \
+         largest phase-space error over the run against the exact solution (the work \
+         study's rungs, the tolerance ladders' runs for the own pairs and the peers' runs \
+         of the work study, whose tolerances go a decade further). The N-body scenes have \
+         no exact solution: there the error is the phase-space distance at the end time to \
+         a reference state, each adaptive contender run from a tolerance of {} a decade at \
+         a time until the targets are bracketed or its error stops falling, each \
+         fixed-step scheme from {} steps doubling until it reaches every target or its run \
+         that missed one already cost what the cheapest own pair spends there, after which \
+         it cannot be the crate's best (`none below N` says where the search stopped). A \
+         target is judged only where the reference's own error is at most {} of it.\n\n\
+         A fixed step pays everywhere for the orbit's fastest part, an adaptive one only \
+         there. Where DPRKN8(6) wins, the reason is the equation: for `q'' = a(q)` a \
+         Nyström method spends no stages on the velocity's own derivative, so it reaches \
+         order eight with eight force evaluations a step, where DOP853, written for any \
+         first-order system and run on `(q, v)`, spends twelve, and Verner's 9(8) pair, \
+         one order higher, sixteen. Where neither side reaches a target the reference \
+         resolves, the outcome gives the smallest error any run reached: every \
+         contender's error has stopped falling above the target, at the round-off its \
+         state updates make in double precision (with compensated sums, Kahan and Li's \
+         composition gets below the smallest target on the Pleiades, where the same \
+         composition without them stalls: `tests/harness/nbody.rs`).\n\n",
+        sci(NBODY_FIRST_TOLERANCE),
+        NBODY_FIRST_STEPS,
+        REFERENCE_SHARE,
+    ));
+    out.push_str(&race_table(&race.rows));
+    out.push_str(
+        "\nThe N-body references, how well each is known, and how closely the adaptive \
+         contenders' tightest runs come to it and to each other:\n\n",
+    );
+    out.push_str(&reference_table(&race.nbody));
+    out
+}
+
+/// The race by wall time.
+pub fn timing_section(rows: &[RaceRow]) -> String {
+    let mut out = String::from(
+        "\n### The race by time\n\nThe race of the deterministic part, by wall time, \
+         interpolated to each target like the evaluations: the own pairs on the Kepler \
+         orbits from their tolerance ladders (each tolerance's run timed whole after the \
+         ladders, one at a time, fastest of several); every other adaptive run that \
+         decides a target (the peers' on the Kepler orbits, every contender's on the \
+         N-body scenes) timed the same way, set-up and output included; the fixed steps on \
+         the Kepler orbits from the time-to-target table, on the N-body scenes their runs \
+         that decide a target timed whole. A fixed step shown as `-` was not searched \
+         beyond the own pair's evaluations (see the race by evaluations).\n\n",
+    );
+    out.push_str(&rows_table(rows, Unit::Seconds));
+    out
+}

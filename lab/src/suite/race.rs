@@ -1,0 +1,1008 @@
+//! The race: the crate's best integrator, fixed-step or adaptive, against
+//! every peer at equal error, on the two Kepler orbits and the two N-body
+//! scenes.
+//!
+//! On the Kepler orbits every contender's cost comes from runs made anyway:
+//! the cheapest fixed-step scheme from the work study, the adaptive pairs
+//! and the peers from their tolerance ladders, all judged by the largest
+//! phase-space error over the run against the exact solution. The N-body
+//! scenes have no exact solution, so their contenders are run here and
+//! judged by the phase-space distance at the end time to a reference state
+//! ([`NbodyReference`]); a target below what the reference resolves is
+//! marked as not judged.
+//!
+//! On the N-body scenes the search for the cheapest fixed-step scheme stops
+//! where it can no longer matter to the race: once a scheme's run that
+//! misses a target already costs at least what the cheapest own adaptive
+//! pair spends on it (every finer run costs more, and an interpolated cost
+//! lies between the costs of the two runs that bracket the target), that
+//! scheme cannot be the crate's best at that target. Where no own pair
+//! reaches a target, the fixed steps are searched as far as the pairs' most
+//! expensive run went.
+
+use crate::peer::{IntegratorVisitor, PEERS, VERNER98};
+use crate::suite::adaptive::{AdaptiveRecords, INTEGRATORS, OWN_PAIRS};
+use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
+use serde::Serialize;
+use stepladder::parallel::parallel_map;
+use stepladder::run::integrate;
+use stepladder::scene::{AnyScene, Counted, OuterSolarSystem, Pleiades, Scene, SceneVisitor};
+use stepladder::scheme::{
+    CompensatedSplitting, KAHAN_LI8, Scheme, SchemeVisitor, scheme_ids, visit_scheme,
+};
+use stepladder::state::State;
+use stepladder::study::adaptive::{AdaptiveIntegrator, RunEnd};
+use stepladder::study::cost::step_time::time_run;
+use stepladder::study::cost::work_points::{Reach, cheapest, cost_to_reach};
+
+/// The Kepler scenes of the race.
+pub const KEPLER_SCENES: [&str; 2] = ["kepler-circular", "kepler-eccentric"];
+/// The N-body scenes of the race.
+pub const NBODY_SCENES: [&str; 2] = ["pleiades", "outer-solar-system"];
+/// The target errors, from a loose to a tight one.
+pub const RACE_TARGETS: [f64; 3] = [1e-6, 1e-9, 1e-12];
+
+/// A target is judged when the reference's own error is at most this share
+/// of it: the error measured against the reference is then the true error
+/// to within 10%, which moves the interpolated cost of an order-`p` method
+/// by a factor `1.1^(1/p)`, under 2% for `p >= 6` (the contenders' orders).
+pub const REFERENCE_SHARE: f64 = 0.1;
+
+/// The first tolerance of an adaptive contender's ladder on an N-body
+/// scene. The ladder goes a decade looser a run while its loosest run is
+/// already below the largest target, and a decade tighter a run until the
+/// error is below the smallest target or has stopped falling: a run whose
+/// error is not below half the smallest before it (once that is below the
+/// largest target) is at the floor that round-off and the problem's
+/// conditioning set, since a tenfold tighter tolerance cuts an order-`p`
+/// pair's error by `10^(p/(q+1))`, at least 8 for every contender here
+/// (`p/(q+1) >= 0.9`), while it is above that floor.
+pub const NBODY_FIRST_TOLERANCE: f64 = 1e-8;
+
+/// The tightest and loosest tolerances an N-body ladder may try: below
+/// `1e-16` the tolerance is under a unit of round-off of the states'
+/// order-one components.
+pub const NBODY_TOLERANCE_RANGE: [f64; 2] = [1e-16, 1e-3];
+
+/// Steps of the first run of a fixed-step ladder on an N-body scene; each
+/// next run doubles them.
+pub const NBODY_FIRST_STEPS: u64 = 16;
+
+/// Most force evaluations one fixed-step run may spend, whatever the
+/// bounds.
+pub const NBODY_MAX_EVALUATIONS: u64 = 1 << 20;
+
+/// Steps of Kahan and Li's eighth-order composition (compensated sums) for
+/// the outer solar system's reference over its default end time, about
+/// 1.1 days a step for Jupiter's 4,333-day orbit.
+pub const OUTER_REFERENCE_STEPS: u64 = 1 << 14;
+
+/// The tolerance of the independent check of the outer solar system's
+/// reference: Verner's 9(8) pair, a different method with a different error
+/// control.
+pub const OUTER_CHECK_TOLERANCE: f64 = 1e-15;
+
+/// The quadruple-precision state of the Pleiades at `t = 3` (K. J. L. Li,
+/// RKAdaptiveMethods, Pleiades reference, stated good to 25 digits), in the
+/// IVP test set's order `x1..x7, y1..y7, x'1..x'7, y'1..y'7`: what the
+/// published 16-digit state is measured against.
+pub const PLEIADES_QUADRUPLE_PRECISION: [&str; 28] = [
+    "0.370613914397051269489224978315",
+    "3.237284092057233220174339294317",
+    "-3.222559032418323532453996449476",
+    "0.659709145577530797766030445928",
+    "0.342558170715657972493772831513",
+    "1.562172101400631119005879554607",
+    "-0.700309292221249490850709662482",
+    "-3.943437585517392207634657097515",
+    "-3.271380973972549899286832442158",
+    "5.225081843456544028470034390921",
+    "-2.590612434977469291652596439235",
+    "1.198213693392274681315257112146",
+    "-0.242968234493582346811280103793",
+    "1.091449240428979727823843859369",
+    "3.417003806314314662273545764037",
+    "1.354584501625501147259456047323",
+    "-2.590065597810775610554401282570",
+    "2.025053734714241215897345682606",
+    "-1.155815100160449082622449168412",
+    "-0.807298817022302217516482869542",
+    "0.595239635420871882054427715047",
+    "-3.741244961234008403749839999364",
+    "0.377345968575062917782503291164",
+    "0.938685886955107906537421058601",
+    "0.366792222720056959595069656643",
+    "-0.347404635380849424741711573006",
+    "2.344915448180937111999355693115",
+    "-1.947020434263291965848452491628",
+];
+
+/// [`PLEIADES_QUADRUPLE_PRECISION`] as a mass-weighted state (each value
+/// correctly rounded to f64).
+pub fn pleiades_quadruple_precision(stars: &Pleiades) -> State<14> {
+    let x: Vec<f64> = PLEIADES_QUADRUPLE_PRECISION
+        .iter()
+        .map(|s| s.parse().expect("decimal literals"))
+        .collect();
+    let physical = State::new(
+        nalgebra::SVector::from_fn(|n, _| x[7 * (n % 2) + n / 2]),
+        nalgebra::SVector::from_fn(|n, _| x[14 + 7 * (n % 2) + n / 2]),
+    );
+    stars.mass_weighted(&physical)
+}
+
+/// An upper bound on the published Pleiades state's own error: its phase
+/// distance to the quadruple-precision state plus the latter's rounding to
+/// f64 (half an ulp a component, weighted as the phase distance weighs it).
+pub fn pleiades_published_accuracy(stars: &Pleiades) -> f64 {
+    let quad = pleiades_quadruple_precision(stars);
+    let w = stars.frequency();
+    let rounding =
+        0.5 * f64::EPSILON * (quad.q.norm_squared() + (quad.v / w).norm_squared()).sqrt();
+    stars.phase_distance(&stars.published_end(), &quad) + rounding
+}
+
+/// Kahan and Li's eighth-order composition with compensated sums: the
+/// reference's method, whose round-off over thousands of steps stays near a
+/// unit of the states.
+const KAHAN_LI8_COMPENSATED: CompensatedSplitting = CompensatedSplitting {
+    meta: KAHAN_LI8.meta,
+    table: &KAHAN_LI8,
+};
+
+/// The state the N-body contenders are judged against, and how well it is
+/// known.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NbodyReference {
+    /// Scene id.
+    pub scene: &'static str,
+    /// The time of the state.
+    pub t_end: f64,
+    /// Where the state comes from.
+    pub source: &'static str,
+    /// How its error is bounded or estimated.
+    pub accuracy_source: &'static str,
+    /// The bound or estimate of its phase-space error.
+    pub accuracy: f64,
+    /// The state, `q` then `v`, mass-weighted.
+    pub state: Vec<f64>,
+}
+
+impl NbodyReference {
+    /// The state as the scene's.
+    fn state<const D: usize>(&self) -> State<D> {
+        State::new(
+            nalgebra::SVector::from_fn(|i, _| self.state[i]),
+            nalgebra::SVector::from_fn(|i, _| self.state[D + i]),
+        )
+    }
+
+    /// Whether a target is above what the reference resolves.
+    pub fn judges(&self, target: f64) -> bool {
+        self.accuracy <= REFERENCE_SHARE * target
+    }
+}
+
+fn flat<const D: usize>(s: &State<D>) -> Vec<f64> {
+    s.q.iter().chain(s.v.iter()).copied().collect()
+}
+
+/// An N-body scene of the race.
+#[derive(Clone, Copy, Debug)]
+pub enum NbodyScene {
+    /// [`Pleiades`].
+    Pleiades(Pleiades),
+    /// [`OuterSolarSystem`].
+    OuterSolarSystem(OuterSolarSystem),
+}
+
+impl NbodyScene {
+    /// Both, in race order.
+    pub fn all() -> [NbodyScene; 2] {
+        [
+            NbodyScene::Pleiades(Pleiades::default()),
+            NbodyScene::OuterSolarSystem(OuterSolarSystem::default()),
+        ]
+    }
+
+    /// Runs `visitor` on the scene.
+    pub fn visit<V: SceneVisitor>(&self, visitor: V) -> V::Output {
+        match self {
+            NbodyScene::Pleiades(s) => visitor.visit::<Pleiades, 14>(s),
+            NbodyScene::OuterSolarSystem(s) => visitor.visit::<OuterSolarSystem, 18>(s),
+        }
+    }
+
+    /// The reference state at the scene's default end time: for the
+    /// Pleiades the published one, for the outer solar system Kahan and
+    /// Li's composition at [`OUTER_REFERENCE_STEPS`], its error estimated by
+    /// its distance to Verner's pair at [`OUTER_CHECK_TOLERANCE`].
+    pub fn reference(&self) -> NbodyReference {
+        match self {
+            NbodyScene::Pleiades(stars) => NbodyReference {
+                scene: "pleiades",
+                t_end: Pleiades::PUBLISHED_TIME,
+                source: "the published state (IVP test set, PLEI)",
+                accuracy_source: "its distance to a quadruple-precision integration",
+                accuracy: pleiades_published_accuracy(stars),
+                state: flat(&stars.published_end()),
+            },
+            NbodyScene::OuterSolarSystem(planets) => {
+                let t_end = planets.default_t_end();
+                let composition = end_state(
+                    &KAHAN_LI8_COMPENSATED,
+                    planets,
+                    t_end,
+                    OUTER_REFERENCE_STEPS,
+                )
+                .expect("the composition resolves the nearly circular orbits");
+                let check = VERNER98
+                    .run(planets, t_end, OUTER_CHECK_TOLERANCE)
+                    .ok()
+                    .filter(|r| r.end == RunEnd::Reached)
+                    .and_then(|r| r.trajectory.last().map(|x| x.1))
+                    .expect("Verner's pair reaches the end");
+                NbodyReference {
+                    scene: "outer-solar-system",
+                    t_end,
+                    source: "Kahan and Li's eighth-order composition, compensated sums, 16384 steps",
+                    accuracy_source: "its distance to Verner's 9(8) pair at TOL = 1e-15",
+                    accuracy: planets.phase_distance(&composition, &check),
+                    state: flat(&composition),
+                }
+            }
+        }
+    }
+}
+
+/// The state at `t_end` after `steps` fixed steps, counting the force
+/// evaluations; `None` when the run blew up.
+fn counted_end<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    t_end: f64,
+    steps: u64,
+) -> (Option<State<D>>, u64) {
+    let counted = Counted::new(scene);
+    let mut last = None;
+    let outcome = integrate(
+        scheme,
+        &counted,
+        &scene.initial(),
+        t_end / steps as f64,
+        steps,
+        |n, _, s| {
+            if n == steps {
+                last = Some(*s);
+            }
+        },
+    );
+    (last.filter(|_| outcome.completed()), counted.evaluations())
+}
+
+fn end_state<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    t_end: f64,
+    steps: u64,
+) -> Option<State<D>> {
+    counted_end(scheme, scene, t_end, steps).0
+}
+
+/// One run of a contender.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct RacePoint {
+    /// The tolerance of an adaptive run, the steps of a fixed-step one.
+    pub setting: f64,
+    /// Force evaluations.
+    pub evaluations: u64,
+    /// Its error (on an N-body scene the phase-space distance at the end
+    /// time to the reference); `None` when the run did not reach the end.
+    pub error: Option<f64>,
+}
+
+/// A contender's runs on one scene, cheapest first.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RaceLadder {
+    /// The integrator's name or the scheme's id.
+    pub contender: &'static str,
+    /// The runs.
+    pub points: Vec<RacePoint>,
+    /// The end state of the last run (`q` then `v`), where it reached the
+    /// end on an N-body scene.
+    #[serde(skip)]
+    pub last_end: Option<Vec<f64>>,
+}
+
+impl RaceLadder {
+    fn data(&self) -> Vec<(f64, Option<f64>)> {
+        self.points
+            .iter()
+            .map(|p| (p.evaluations as f64, p.error))
+            .collect()
+    }
+
+    /// The evaluations to reach `target`.
+    pub fn reach(&self, target: f64) -> Reach {
+        cost_to_reach(&self.data(), target)
+    }
+
+    /// The indices of the runs that decide the cost of `target` (the first
+    /// at or below it and the one before), the only runs the time race needs.
+    fn deciding(&self, target: f64) -> Vec<usize> {
+        match self
+            .points
+            .iter()
+            .position(|p| p.error.is_some_and(|e| e <= target))
+        {
+            Some(0) => vec![0],
+            Some(k) => vec![k - 1, k],
+            None => Vec::new(),
+        }
+    }
+}
+
+/// The adaptive contender's ladder (see [`NBODY_FIRST_TOLERANCE`]).
+fn adaptive_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
+    integrator: &I,
+    scene: &S,
+    reference: &NbodyReference,
+) -> RaceLadder {
+    let mut ends: Vec<(f64, Option<State<D>>)> = Vec::new();
+    let mut run = |tol: f64| {
+        let (evaluations, state) = match integrator.run(scene, reference.t_end, tol) {
+            Ok(r) => (
+                r.evaluations,
+                r.trajectory
+                    .last()
+                    .filter(|_| r.end == RunEnd::Reached)
+                    .map(|x| x.1),
+            ),
+            Err(_) => (0, None),
+        };
+        ends.push((tol, state));
+        RacePoint {
+            setting: tol,
+            evaluations,
+            error: state
+                .map(|s| scene.phase_distance(&s, &reference.state()))
+                .filter(|e| e.is_finite()),
+        }
+    };
+    let (smallest, largest) = (RACE_TARGETS[2], RACE_TARGETS[0]);
+    let [tightest, loosest] = NBODY_TOLERANCE_RANGE;
+    let mut points = vec![run(NBODY_FIRST_TOLERANCE)];
+    let mut tol = NBODY_FIRST_TOLERANCE;
+    while points[0].error.is_none_or(|e| e <= largest) && tol * 10.0 <= loosest * 1.0001 {
+        tol *= 10.0;
+        points.insert(0, run(tol));
+    }
+    let mut tol = NBODY_FIRST_TOLERANCE;
+    let mut best = f64::INFINITY;
+    while tol / 10.0 >= tightest * 0.9999 {
+        let last = points.last().and_then(|p| p.error);
+        let floor = last.is_some_and(|e| best <= largest && e >= 0.5 * best);
+        if last.is_some_and(|e| e <= smallest) || floor {
+            break;
+        }
+        best = points.iter().filter_map(|p| p.error).fold(best, f64::min);
+        tol /= 10.0;
+        points.push(run(tol));
+    }
+    let last = points.last().map(|p| p.setting);
+    let last_end = ends
+        .iter()
+        .find(|(tol, _)| Some(*tol) == last)
+        .and_then(|(_, s)| s.as_ref().map(flat));
+    RaceLadder {
+        contender: integrator.name(),
+        points,
+        last_end,
+    }
+}
+
+/// The fixed-step contender's ladder: steps doubling from
+/// [`NBODY_FIRST_STEPS`] until every target is reached, or until every
+/// target not yet reached is one the run just made cannot beat `bounds`
+/// at (see the module documentation), or a run would exceed
+/// [`NBODY_MAX_EVALUATIONS`].
+fn fixed_ladder<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    reference: &NbodyReference,
+    bounds: &[Option<f64>],
+) -> RaceLadder {
+    let mut points: Vec<RacePoint> = Vec::new();
+    let mut steps = NBODY_FIRST_STEPS;
+    loop {
+        let (end, evaluations) = counted_end(scheme, scene, reference.t_end, steps);
+        let error = end
+            .map(|s| scene.phase_distance(&s, &reference.state()))
+            .filter(|e| e.is_finite());
+        points.push(RacePoint {
+            setting: steps as f64,
+            evaluations,
+            error,
+        });
+        let cost = evaluations as f64;
+        let open: Vec<usize> = (0..RACE_TARGETS.len())
+            .filter(|&i| {
+                !points
+                    .iter()
+                    .any(|p| p.error.is_some_and(|e| e <= RACE_TARGETS[i]))
+            })
+            .collect();
+        let hopeless = open
+            .iter()
+            .all(|&i| bounds.get(i).copied().flatten().is_some_and(|b| cost >= b));
+        if open.is_empty() || hopeless || 2 * evaluations > NBODY_MAX_EVALUATIONS {
+            break;
+        }
+        steps *= 2;
+    }
+    RaceLadder {
+        contender: scheme.meta().id,
+        points,
+        last_end: None,
+    }
+}
+
+/// Every contender on one N-body scene.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NbodyRecord {
+    /// The reference the runs are judged against.
+    pub reference: NbodyReference,
+    /// The adaptive integrators, in the order of
+    /// [`crate::suite::adaptive::INTEGRATORS`].
+    pub adaptive: Vec<RaceLadder>,
+    /// The catalogue's fixed-step schemes, in catalogue order.
+    pub fixed: Vec<RaceLadder>,
+    /// For each target, where the search for a fixed step stops: the
+    /// cheapest own pair's cost, or where no pair reaches the target, the
+    /// most evaluations a pair's run spent.
+    pub fixed_bounds: Vec<Option<f64>>,
+    /// The largest phase distance between the end states of any two
+    /// adaptive contenders at their tightest run: how well the methods
+    /// agree among themselves, apart from the reference.
+    pub spread: f64,
+}
+
+/// A contender's cost of one target, and who it is.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Entry {
+    /// The contender (the cheapest of its kind), if any reaches the target.
+    pub name: Option<&'static str>,
+    /// Its cost.
+    pub reach: Reach,
+}
+
+/// One scene and target of the race: in force evaluations
+/// (deterministic), or in seconds (machine-dependent).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RaceRow {
+    /// Scene id.
+    pub scene: &'static str,
+    /// The target error.
+    pub target: f64,
+    /// The cheapest (or fastest) fixed-step catalogue scheme.
+    pub fixed: Entry,
+    /// Where the search for a fixed step stopped without finding one (the
+    /// own pair's cost, on the N-body scenes).
+    pub fixed_searched_to: Option<f64>,
+    /// The cheapest (or fastest) of the crate's own adaptive pairs.
+    pub pair: Entry,
+    /// Each peer's cost, in the order of [`PEERS`].
+    pub peers: Vec<Reach>,
+    /// On an N-body scene, the smallest error any contender's run reached.
+    pub smallest_error: Option<f64>,
+    /// The reference resolves the target (always, against an exact
+    /// solution).
+    pub judged: bool,
+}
+
+/// The smallest of some costs.
+fn least(costs: impl IntoIterator<Item = Option<f64>>) -> Option<f64> {
+    costs.into_iter().flatten().reduce(f64::min)
+}
+
+impl RaceRow {
+    /// The crate's best cost: fixed step or own pair.
+    pub fn best(&self) -> Option<f64> {
+        least([self.fixed.reach.cost(), self.pair.reach.cost()])
+    }
+
+    /// The cheapest peer's index and cost.
+    pub fn best_peer(&self) -> Option<(usize, f64)> {
+        self.peers
+            .iter()
+            .enumerate()
+            .filter_map(|(i, r)| r.cost().map(|c| (i, c)))
+            .reduce(|a, b| if b.1 < a.1 { b } else { a })
+    }
+}
+
+/// The race's records.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RaceRecords {
+    /// By force evaluations, Kepler scenes then N-body scenes, targets in
+    /// order.
+    pub rows: Vec<RaceRow>,
+    /// The N-body scenes' runs.
+    pub nbody: Vec<NbodyRecord>,
+}
+
+/// The cheapest of the named reaches.
+fn entry(candidates: &[(&'static str, Reach)]) -> Entry {
+    match cheapest(candidates) {
+        Some((name, reach)) => Entry {
+            name: Some(name),
+            reach,
+        },
+        None => Entry {
+            name: None,
+            reach: Reach::NotReached,
+        },
+    }
+}
+
+/// The peers' runs on a Kepler scene in the work study (tolerances down to
+/// 1e-15, one more decade than the tolerance ladders, so that no target a
+/// peer could reach is denied it), in the order of [`PEERS`].
+fn kepler_peers(w: &WorkRecord) -> Vec<RaceLadder> {
+    w.peers
+        .iter()
+        .map(|p| RaceLadder {
+            contender: p.peer,
+            last_end: None,
+            points: p
+                .global
+                .iter()
+                .map(|x| RacePoint {
+                    setting: x.tolerance,
+                    evaluations: x.evaluations,
+                    error: x.error,
+                })
+                .collect(),
+        })
+        .collect()
+}
+
+/// The Kepler rows: the cheapest fixed step from the work study, the own
+/// pairs from their tolerance ladders, the peers from the work study.
+fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> {
+    let mut rows = Vec::new();
+    for scene in KEPLER_SCENES {
+        let Some(w) = work.iter().find(|w| w.scene == scene) else {
+            continue;
+        };
+        let peers = kepler_peers(w);
+        let ladder_reach = |name: &str, target: f64| {
+            adaptive
+                .ladders
+                .iter()
+                .find(|l| l.scene == scene && l.integrator == name)
+                .and_then(|l| l.global_targets().into_iter().find(|c| c.target == target))
+                .map_or(Reach::NotReached, |c| c.reach)
+        };
+        for target in RACE_TARGETS {
+            let Some(c) = w.cheapest_global.iter().find(|c| c.target == target) else {
+                continue;
+            };
+            rows.push(kepler_row(
+                scene,
+                target,
+                Entry {
+                    name: c.scheme,
+                    reach: c.reach,
+                },
+                |name| ladder_reach(name, target),
+                peers.iter().map(|l| l.reach(target)).collect(),
+            ));
+        }
+    }
+    rows
+}
+
+/// A Kepler row, in evaluations or seconds: the fixed step's entry, each
+/// own pair's reach by name, each peer's.
+fn kepler_row(
+    scene: &'static str,
+    target: f64,
+    fixed: Entry,
+    pair: impl Fn(&str) -> Reach,
+    peers: Vec<Reach>,
+) -> RaceRow {
+    let pairs: Vec<(&'static str, Reach)> = OWN_PAIRS
+        .iter()
+        .map(|p| (p.name(), pair(p.name())))
+        .collect();
+    RaceRow {
+        scene,
+        target,
+        fixed,
+        fixed_searched_to: None,
+        pair: entry(&pairs),
+        peers,
+        smallest_error: None,
+        judged: true,
+    }
+}
+
+/// The N-body rows from their records.
+fn nbody_rows(records: &[NbodyRecord]) -> Vec<RaceRow> {
+    let mut rows = Vec::new();
+    for r in records {
+        for (i, &target) in RACE_TARGETS.iter().enumerate() {
+            let named = |ladders: &[RaceLadder]| -> Vec<(&'static str, Reach)> {
+                ladders
+                    .iter()
+                    .map(|l| (l.contender, l.reach(target)))
+                    .collect()
+            };
+            let fixed = entry(&named(&r.fixed));
+            let pairs: Vec<(&'static str, Reach)> = named(&r.adaptive)[..OWN_PAIRS.len()].to_vec();
+            rows.push(RaceRow {
+                scene: r.reference.scene,
+                target,
+                fixed,
+                fixed_searched_to: r.fixed_bounds[i].filter(|_| fixed.name.is_none()),
+                pair: entry(&pairs),
+                peers: r.adaptive[OWN_PAIRS.len()..]
+                    .iter()
+                    .map(|l| l.reach(target))
+                    .collect(),
+                smallest_error: r
+                    .adaptive
+                    .iter()
+                    .chain(&r.fixed)
+                    .flat_map(|l| &l.points)
+                    .filter_map(|p| p.error)
+                    .reduce(f64::min),
+                judged: r.reference.judges(target),
+            });
+        }
+    }
+    rows
+}
+
+struct AdaptiveOn<'a>(&'a NbodyScene, &'a NbodyReference);
+impl IntegratorVisitor for AdaptiveOn<'_> {
+    type Output = RaceLadder;
+    fn visit<I: AdaptiveIntegrator>(self, integrator: &I) -> RaceLadder {
+        self.0.visit(AdaptiveOnScene(integrator, self.1))
+    }
+}
+
+struct AdaptiveOnScene<'a, I>(&'a I, &'a NbodyReference);
+impl<I: AdaptiveIntegrator> SceneVisitor for AdaptiveOnScene<'_, I> {
+    type Output = RaceLadder;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        scene: &S,
+    ) -> RaceLadder {
+        adaptive_ladder(self.0, scene, self.1)
+    }
+}
+
+struct FixedOn<'a>(&'a NbodyScene, &'a NbodyReference, &'a [Option<f64>]);
+impl SchemeVisitor for FixedOn<'_> {
+    type Output = RaceLadder;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> RaceLadder {
+        self.0.visit(FixedOnScene(scheme, self.1, self.2))
+    }
+}
+
+struct FixedOnScene<'a, M: 'static>(&'static M, &'a NbodyReference, &'a [Option<f64>]);
+impl<M: Scheme + Sync + 'static> SceneVisitor for FixedOnScene<'_, M> {
+    type Output = RaceLadder;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        scene: &S,
+    ) -> RaceLadder {
+        fixed_ladder(self.0, scene, self.1, self.2)
+    }
+}
+
+/// Phase distance between two flat states of a scene.
+struct Distance<'a>(&'a [f64], &'a [f64]);
+impl SceneVisitor for Distance<'_> {
+    type Output = f64;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(self, scene: &S) -> f64 {
+        let state = |x: &[f64]| {
+            State::<D>::new(
+                nalgebra::SVector::from_fn(|i, _| x[i]),
+                nalgebra::SVector::from_fn(|i, _| x[D + i]),
+            )
+        };
+        scene.phase_distance(&state(self.0), &state(self.1))
+    }
+}
+
+/// Every contender on both N-body scenes, on `threads` threads: the
+/// references, then the adaptive ladders, then the fixed-step ladders
+/// (bounded by the own pairs' costs).
+pub fn nbody_study(threads: usize) -> Vec<NbodyRecord> {
+    let scenes = NbodyScene::all();
+    let references = parallel_map(&scenes, threads, NbodyScene::reference, &|_, _| {});
+    let jobs: Vec<(usize, crate::suite::adaptive::Adaptive)> = (0..scenes.len())
+        .flat_map(|s| INTEGRATORS.iter().map(move |&i| (s, i)))
+        .collect();
+    let mut adaptive = parallel_map(
+        &jobs,
+        threads,
+        |&(s, i)| i.visit(AdaptiveOn(&scenes[s], &references[s])),
+        &|_, _| {},
+    )
+    .into_iter();
+    let per_scene: Vec<Vec<RaceLadder>> = scenes
+        .iter()
+        .map(|_| adaptive.by_ref().take(INTEGRATORS.len()).collect())
+        .collect();
+    let bounds: Vec<Vec<Option<f64>>> = per_scene
+        .iter()
+        .map(|ladders| {
+            let pairs = &ladders[..OWN_PAIRS.len()];
+            // where no pair reaches a target, the fixed steps get as much as
+            // the pairs spent trying
+            let spent = pairs
+                .iter()
+                .flat_map(|l| &l.points)
+                .map(|p| p.evaluations as f64)
+                .reduce(f64::max);
+            RACE_TARGETS
+                .iter()
+                .map(|&t| least(pairs.iter().map(|l| l.reach(t).cost())).or(spent))
+                .collect()
+        })
+        .collect();
+    let ids = scheme_ids();
+    let jobs: Vec<(usize, &'static str)> = (0..scenes.len())
+        .flat_map(|s| ids.iter().map(move |&id| (s, id)))
+        .collect();
+    let mut fixed = parallel_map(
+        &jobs,
+        threads,
+        |&(s, id)| {
+            visit_scheme(id, FixedOn(&scenes[s], &references[s], &bounds[s]))
+                .expect("catalogue ids")
+        },
+        &|_, _| {},
+    )
+    .into_iter();
+    scenes
+        .iter()
+        .zip(references)
+        .zip(per_scene)
+        .zip(bounds)
+        .map(|(((scene, reference), adaptive), fixed_bounds)| {
+            // how far apart the adaptive contenders' tightest runs end
+            let ends: Vec<&Vec<f64>> = adaptive
+                .iter()
+                .filter_map(|l| l.last_end.as_ref())
+                .collect();
+            let mut spread: f64 = 0.0;
+            for (k, a) in ends.iter().enumerate() {
+                for b in &ends[k + 1..] {
+                    spread = spread.max(scene.visit(Distance(a, b)));
+                }
+            }
+            NbodyRecord {
+                reference,
+                adaptive,
+                fixed: fixed.by_ref().take(ids.len()).collect(),
+                fixed_bounds,
+                spread,
+            }
+        })
+        .collect()
+}
+
+/// The race by force evaluations, from the work study, the tolerance
+/// ladders and the N-body study.
+pub fn race(
+    work: &[WorkRecord],
+    adaptive: &AdaptiveRecords,
+    nbody: Vec<NbodyRecord>,
+) -> RaceRecords {
+    let mut rows = kepler_rows(work, adaptive);
+    rows.extend(nbody_rows(&nbody));
+    RaceRecords { rows, nbody }
+}
+
+/// A scene of any dimension that a visitor can be run on.
+trait AnyDimension {
+    fn visit_scene<V: SceneVisitor>(&self, visitor: V) -> V::Output;
+}
+
+impl AnyDimension for NbodyScene {
+    fn visit_scene<V: SceneVisitor>(&self, visitor: V) -> V::Output {
+        self.visit(visitor)
+    }
+}
+
+impl AnyDimension for AnyScene {
+    fn visit_scene<V: SceneVisitor>(&self, visitor: V) -> V::Output {
+        self.visit(visitor)
+    }
+}
+
+/// The fastest of [`PEER_REPEATS`] runs of an adaptive integrator.
+struct TimeAdaptive<'a, A>(&'a A, f64, f64);
+impl<A: AnyDimension> IntegratorVisitor for TimeAdaptive<'_, A> {
+    type Output = f64;
+    fn visit<I: AdaptiveIntegrator>(self, integrator: &I) -> f64 {
+        self.0
+            .visit_scene(TimeAdaptiveOn(integrator, self.1, self.2))
+    }
+}
+
+struct TimeAdaptiveOn<'a, I>(&'a I, f64, f64);
+impl<I: AdaptiveIntegrator> SceneVisitor for TimeAdaptiveOn<'_, I> {
+    type Output = f64;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(self, scene: &S) -> f64 {
+        (0..PEER_REPEATS)
+            .filter_map(|_| self.0.run(scene, self.1, self.2).ok())
+            .map(|r| r.time.as_secs_f64())
+            .reduce(f64::min)
+            .unwrap_or(f64::NAN)
+    }
+}
+
+/// The fastest of [`PEER_REPEATS`] fixed-step runs.
+struct TimeFixed<'a>(&'a NbodyScene, f64, u64);
+impl SchemeVisitor for TimeFixed<'_> {
+    type Output = f64;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> f64 {
+        self.0.visit(TimeFixedOn(scheme, self.1, self.2))
+    }
+}
+
+struct TimeFixedOn<M: 'static>(&'static M, f64, u64);
+impl<M: Scheme + Sync + 'static> SceneVisitor for TimeFixedOn<M> {
+    type Output = f64;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(self, scene: &S) -> f64 {
+        let h = self.1 / self.2 as f64;
+        (0..PEER_REPEATS)
+            .map(|_| {
+                time_run(self.0, scene, &scene.initial(), h, self.2)
+                    .time
+                    .as_secs_f64()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// The seconds to reach each target from a ladder, timing with `time` only
+/// the runs that decide some target, each once.
+fn seconds_to_reach(ladder: &RaceLadder, time: impl Fn(&RacePoint) -> f64) -> Vec<Reach> {
+    let mut needed: Vec<usize> = RACE_TARGETS
+        .iter()
+        .flat_map(|&t| ladder.deciding(t))
+        .collect();
+    needed.sort_unstable();
+    needed.dedup();
+    let seconds: Vec<(usize, f64)> = needed
+        .into_iter()
+        .map(|k| (k, time(&ladder.points[k])))
+        .collect();
+    RACE_TARGETS
+        .iter()
+        .map(|&target| {
+            let data: Vec<(f64, Option<f64>)> = ladder
+                .deciding(target)
+                .into_iter()
+                .map(|k| {
+                    let t = seconds.iter().find(|x| x.0 == k).map_or(f64::NAN, |x| x.1);
+                    (t, ladder.points[k].error)
+                })
+                .collect();
+            cost_to_reach(&data, target)
+        })
+        .collect()
+}
+
+/// The race by wall time: on the Kepler orbits the fixed steps from the
+/// work study's time-to-target and the own pairs from their ladders' timed
+/// runs; everywhere else (the peers on the Kepler orbits, every contender on
+/// the N-body scenes) the runs that decide each target are timed here, one
+/// at a time, the fastest of [`PEER_REPEATS`] each.
+pub fn race_times(
+    records: &RaceRecords,
+    work: &[WorkRecord],
+    timings: &[WorkTiming],
+    adaptive: &AdaptiveRecords,
+) -> Vec<RaceRow> {
+    let mut rows = Vec::new();
+    for scene in KEPLER_SCENES {
+        let Some(w) = timings.iter().find(|w| w.scene == scene) else {
+            continue;
+        };
+        let timed = |name: &str, target: f64| {
+            adaptive
+                .ladders
+                .iter()
+                .zip(&adaptive.point_seconds)
+                .find(|(l, _)| l.scene == scene && l.integrator == name)
+                .map_or(Reach::NotReached, |(l, s)| {
+                    let data: Vec<(f64, Option<f64>)> = s
+                        .iter()
+                        .zip(&l.points)
+                        .filter(|(t, _)| t.is_finite())
+                        .map(|(&t, p)| (t, p.error))
+                        .collect();
+                    cost_to_reach(&data, target)
+                })
+        };
+        // the peers' runs that decide a target, timed here one at a time
+        let any = AnyScene::all().into_iter().find(|s| s.meta().id == scene);
+        let peers: Vec<Vec<Reach>> = match (work.iter().find(|w| w.scene == scene), any) {
+            (Some(record), Some(any)) => {
+                let t_end = record.t_end;
+                kepler_peers(record)
+                    .iter()
+                    .zip(PEERS)
+                    .map(|(l, p)| {
+                        seconds_to_reach(l, |x| p.visit(TimeAdaptive(&any, t_end, x.setting)))
+                    })
+                    .collect()
+            }
+            _ => Vec::new(),
+        };
+        for (k, target) in RACE_TARGETS.into_iter().enumerate() {
+            let Some(f) = w.fastest_global.iter().find(|f| f.target == target) else {
+                continue;
+            };
+            rows.push(kepler_row(
+                scene,
+                target,
+                Entry {
+                    name: f.scheme,
+                    reach: f.seconds,
+                },
+                |name| timed(name, target),
+                peers.iter().map(|s| s[k]).collect(),
+            ));
+        }
+    }
+    for (scene, r) in NbodyScene::all().iter().zip(&records.nbody) {
+        let t_end = r.reference.t_end;
+        let adaptive: Vec<Vec<Reach>> = r
+            .adaptive
+            .iter()
+            .zip(INTEGRATORS)
+            .map(|(l, i)| seconds_to_reach(l, |p| i.visit(TimeAdaptive(scene, t_end, p.setting))))
+            .collect();
+        let fixed: Vec<Vec<Reach>> = r
+            .fixed
+            .iter()
+            .map(|l| {
+                seconds_to_reach(l, |p| {
+                    visit_scheme(l.contender, TimeFixed(scene, t_end, p.setting as u64))
+                        .expect("catalogue ids")
+                })
+            })
+            .collect();
+        for (k, &target) in RACE_TARGETS.iter().enumerate() {
+            let named =
+                |ladders: &[RaceLadder], seconds: &[Vec<Reach>]| -> Vec<(&'static str, Reach)> {
+                    ladders
+                        .iter()
+                        .zip(seconds)
+                        .map(|(l, s)| (l.contender, s[k]))
+                        .collect()
+                };
+            let pairs = OWN_PAIRS.len();
+            rows.push(RaceRow {
+                scene: r.reference.scene,
+                target,
+                fixed: entry(&named(&r.fixed, &fixed)),
+                fixed_searched_to: None,
+                pair: entry(&named(&r.adaptive[..pairs], &adaptive[..pairs])),
+                peers: adaptive[pairs..].iter().map(|s| s[k]).collect(),
+                smallest_error: None,
+                judged: r.reference.judges(target),
+            });
+        }
+    }
+    rows
+}
