@@ -7,8 +7,8 @@
 //! - `numeris`' `RKV98NoInterp`, Verner's "efficient" 9(8) pair (J. H.
 //!   Verner, *Numerically optimal Runge-Kutta pairs with interpolants*,
 //!   Numer. Algorithms 53 (2010) 383-396): sixteen evaluations a step for
-//!   order nine, the strongest explicit first-order pair of a published Rust
-//!   crate that does not spend stages on interpolation.
+//!   order nine, none of them spent on an interpolant (the crate's `RKV98`
+//!   adds five stages a step for one).
 //!
 //! Each is judged exactly as the catalogue is: its global error is the
 //! largest phase-space distance to the scene's exact solution over every step
@@ -367,8 +367,9 @@ impl FirstOrder for NumerisVerner98 {
             // the default 1e-6 would accept any step that short whatever its
             // error; no step is accepted here unless it meets the tolerance
             min_step: 0.0,
-            // the states at the step starts are kept with the stages; no
-            // interpolant is evaluated
+            // the one way the crate hands back the state at every step it
+            // takes: kept with that step's stages, no interpolant evaluated
+            // (the stages are stored, which costs time, not evaluations)
             dense_output: true,
             ..AdaptiveSettings::default()
         };

@@ -31,7 +31,8 @@ fn method() -> String {
          controller whose estimate behaves like `h^m`, advancing with an order-`p` \
          solution, settles at steps `h ~ TOL^(1/m)` and a global error `~ TOL^(p/m)` \
          (Hairer, Nørsett, Wanner I, II.4): `6/5` for DPRKN6(4) (`m = q + 1 = 5`), `8/7` for \
-         DPRKN8(6). Where a pair's exponent misses, its accepted steps are fitted against \
+         DPRKN8(6), `9/9 = 1` for Verner's 9(8) pair (its PID controller, like any, \
+         settles where the estimate is a fixed fraction of the tolerance). Where a pair's exponent misses, its accepted steps are fitted against \
          `TOL` (the controller's half of the claim, `N ~ TOL^(-1/m)`) and its method is run \
          at fixed steps over the same step counts (the method's half): a method still above \
          its asymptotic order at those steps, with the exponent that order predicts, leaves \

@@ -48,21 +48,24 @@ pub const RACE_TARGETS: [f64; 3] = [1e-6, 1e-9, 1e-12];
 /// by a factor `1.1^(1/p)`, under 2% for `p >= 6` (the contenders' orders).
 pub const REFERENCE_SHARE: f64 = 0.1;
 
-/// The first tolerance of an adaptive contender's ladder on an N-body
-/// scene. The ladder goes a decade looser a run while its loosest run is
-/// already below the largest target, and a decade tighter a run until the
-/// error is below the smallest target or has stopped falling: a run whose
-/// error is not below half the smallest before it (once that is below the
-/// largest target) is at the floor that round-off and the problem's
-/// conditioning set, since a tenfold tighter tolerance cuts an order-`p`
-/// pair's error by `10^(p/(q+1))`, at least 8 for every contender here
-/// (`p/(q+1) >= 0.9`), while it is above that floor.
-pub const NBODY_FIRST_TOLERANCE: f64 = 1e-8;
+/// The tolerances an adaptive contender's ladder on an N-body scene may
+/// use, one a decade, loosest first, each the literal nearest its decade (a
+/// tolerance a unit of round-off off its decade moves a run at the floor by
+/// as much as the floor itself): below `1e-16` a tolerance is under a unit
+/// of round-off of the states' order-one components.
+pub const NBODY_TOLERANCES: [f64; 14] = [
+    1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15, 1e-16,
+];
 
-/// The tightest and loosest tolerances an N-body ladder may try: below
-/// `1e-16` the tolerance is under a unit of round-off of the states'
-/// order-one components.
-pub const NBODY_TOLERANCE_RANGE: [f64; 2] = [1e-16, 1e-3];
+/// The first of [`NBODY_TOLERANCES`] an adaptive ladder runs. The ladder
+/// goes a decade looser a run while its loosest run is already below the
+/// largest target, and a decade tighter a run until the error is below the
+/// smallest target or has stopped falling: a run whose error is not below
+/// half the smallest before it (once that is below the largest target) is
+/// at the floor that round-off sets, since a tenfold tighter tolerance cuts
+/// an order-`p` pair's error by `10^(p/(q+1))`, at least 8 for every
+/// contender here (`p/(q+1) >= 0.9`), while it is above that floor.
+pub const NBODY_FIRST_TOLERANCE: f64 = 1e-8;
 
 /// Steps of the first run of a fixed-step ladder on an N-body scene; each
 /// next run doubles them.
@@ -370,24 +373,27 @@ fn adaptive_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         }
     };
     let (smallest, largest) = (RACE_TARGETS[2], RACE_TARGETS[0]);
-    let [tightest, loosest] = NBODY_TOLERANCE_RANGE;
-    let mut points = vec![run(NBODY_FIRST_TOLERANCE)];
-    let mut tol = NBODY_FIRST_TOLERANCE;
-    while points[0].error.is_none_or(|e| e <= largest) && tol * 10.0 <= loosest * 1.0001 {
-        tol *= 10.0;
-        points.insert(0, run(tol));
+    let first = NBODY_TOLERANCES
+        .iter()
+        .position(|&t| t == NBODY_FIRST_TOLERANCE)
+        .expect("the first tolerance is on the list");
+    let mut points = vec![run(NBODY_TOLERANCES[first])];
+    let mut k = first;
+    while points[0].error.is_none_or(|e| e <= largest) && k > 0 {
+        k -= 1;
+        points.insert(0, run(NBODY_TOLERANCES[k]));
     }
-    let mut tol = NBODY_FIRST_TOLERANCE;
+    let mut k = first;
     let mut best = f64::INFINITY;
-    while tol / 10.0 >= tightest * 0.9999 {
+    while k + 1 < NBODY_TOLERANCES.len() {
         let last = points.last().and_then(|p| p.error);
         let floor = last.is_some_and(|e| best <= largest && e >= 0.5 * best);
         if last.is_some_and(|e| e <= smallest) || floor {
             break;
         }
         best = points.iter().filter_map(|p| p.error).fold(best, f64::min);
-        tol /= 10.0;
-        points.push(run(tol));
+        k += 1;
+        points.push(run(NBODY_TOLERANCES[k]));
     }
     let last = points.last().map(|p| p.setting);
     let last_end = ends

@@ -9,7 +9,7 @@ use stepladder::study::adaptive::AdaptiveIntegrator;
 use stepladder::study::cost::work_points::Reach;
 use stepladder_lab::peer::{PEERS, VERNER98};
 use stepladder_lab::suite::race::{
-    KEPLER_SCENES, NBODY_FIRST_STEPS, NBODY_MAX_EVALUATIONS, NBODY_SCENES, NBODY_TOLERANCE_RANGE,
+    KEPLER_SCENES, NBODY_FIRST_STEPS, NBODY_MAX_EVALUATIONS, NBODY_SCENES, NBODY_TOLERANCES,
     OUTER_CHECK_TOLERANCE, OUTER_REFERENCE_STEPS, RACE_TARGETS, REFERENCE_SHARE,
     pleiades_published_accuracy,
 };
@@ -150,8 +150,13 @@ fn the_nbody_adaptive_ladders_bracket_the_targets_or_stop_at_their_floor() {
     for record in &super::common::suite().race.nbody {
         for ladder in &record.adaptive {
             let who = format!("{} on {}", ladder.contender, record.reference.scene);
-            for w in ladder.points.windows(2) {
-                assert!((w[0].setting / w[1].setting - 10.0).abs() < 1e-9, "{who}");
+            // consecutive decades of the list, each exactly its literal
+            let first = NBODY_TOLERANCES
+                .iter()
+                .position(|&t| t == ladder.points[0].setting)
+                .expect("a listed tolerance");
+            for (p, &t) in ladder.points.iter().zip(&NBODY_TOLERANCES[first..]) {
+                assert_eq!(p.setting, t, "{who}");
             }
             for target in RACE_TARGETS {
                 match ladder.reach(target) {
@@ -166,7 +171,7 @@ fn the_nbody_adaptive_ladders_bracket_the_targets_or_stop_at_their_floor() {
                     .filter_map(|p| p.error)
                     .fold(f64::INFINITY, f64::min);
                 let at_floor = last.error.is_some_and(|e| e >= 0.5 * before);
-                let tightest = last.setting <= NBODY_TOLERANCE_RANGE[0] * 1.0001;
+                let tightest = last.setting == NBODY_TOLERANCES[NBODY_TOLERANCES.len() - 1];
                 assert!(at_floor || tightest, "{who}: {:?}", ladder.points);
             }
         }
