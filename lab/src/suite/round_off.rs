@@ -3,7 +3,6 @@
 //! exactly conserved quantities. Jobs are independent and their results
 //! stored by job, so the records do not depend on the thread count.
 
-use std::time::{Duration, Instant};
 use stepladder::error::Error;
 use stepladder::scene::{AnyScene, Harmonic, KeplerCircular};
 use stepladder::scheme::compensated::{pair_ids, paired_ids};
@@ -19,8 +18,6 @@ pub struct RoundoffRecords {
     pub floors: Vec<RoundoffRecord>,
     /// Long runs, scene-major, in pair order (plain schemes, then variants).
     pub longrun: Vec<LongrunRecord>,
-    /// Wall time of the studies (machine-dependent).
-    pub time: Duration,
 }
 
 /// The scenes of the floor study and each one's ladder: the finest step is
@@ -65,7 +62,6 @@ enum Done {
 
 /// Runs every round-off study of the report on `threads` threads.
 pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
-    let start = Instant::now();
     let floors = floor_scenes();
     let longs = longrun_scenes();
     let mut jobs: Vec<Job> = Vec::new();
@@ -99,9 +95,5 @@ pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
         .zip(pairs)
         .map(|((scene, spec), p)| assemble(scene, spec, p))
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(RoundoffRecords {
-        floors,
-        longrun,
-        time: start.elapsed(),
-    })
+    Ok(RoundoffRecords { floors, longrun })
 }
