@@ -80,6 +80,46 @@ impl Default for AutoLadder {
     }
 }
 
+/// The most rungs per halving of the step: neighbouring steps then differ
+/// by `2^(1/16)`, 4.4%, and a first-order error by as much, about what a
+/// fit separates from the rounding of the steps to whole counts; the
+/// interleaved ladder keeps `per_octave` bases in memory and starts at
+/// `4 per_octave` steps, so a finer one costs more and resolves less.
+pub const MAX_PER_OCTAVE: u32 = 16;
+
+/// The smallest rung cap, in force evaluations: the default first rung of
+/// 23 steps refined over the window's two and a half halvings, for a scheme
+/// of up to 17 evaluations a step, `23 * 2^2.5 * 17 = 2.2e3`, rounded up.
+pub const MIN_RUNG_EVALUATIONS: u64 = 1 << 12;
+
+impl AutoLadder {
+    /// Refuses settings that measure nothing or cannot finish: `per_octave`
+    /// in `1..=`[`MAX_PER_OCTAVE`], `max_rung_evaluations` in
+    /// `[`[`MIN_RUNG_EVALUATIONS`]`, `[`MAX_TOTAL_STEPS`]` / 4]` (the rungs of
+    /// halving ladders add up to twice the finest, and each has a twin).
+    pub fn checked(&self) -> Result<(), Error> {
+        if let Some(m) = self.per_octave
+            && !(1..=MAX_PER_OCTAVE).contains(&m)
+        {
+            return Err(Error::InvalidParameter {
+                name: "per_octave",
+                value: f64::from(m),
+                expected: "1 to 16 rungs per halving of the step",
+            });
+        }
+        let cap = self.max_rung_evaluations;
+        if !(MIN_RUNG_EVALUATIONS..=MAX_TOTAL_STEPS / 4).contains(&cap) {
+            return Err(Error::InvalidParameter {
+                name: "max_rung_evaluations",
+                value: cap as f64,
+                expected: "a rung cap in [4096, 5e8] force evaluations: enough for a window's \
+                           rungs, and a ladder of at most the step limit",
+            });
+        }
+        Ok(())
+    }
+}
+
 /// How an order study's ladder ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -142,6 +182,17 @@ impl Ladder {
     /// The rungs over `[0, t_end]`, refusing ladders whose rungs would round
     /// to the same step count or whose total cost is out of proportion.
     pub fn rungs(&self, t_end: f64) -> Result<Vec<RungSize>, Error> {
+        // the coarsest rung must take at least one step
+        if self.h0 > t_end {
+            return Err(Error::OutOfRange {
+                name: "h0",
+                value: self.h0,
+                expected: format!(
+                    "a step in (0, {}], the end time: at least one step",
+                    crate::wording::exact(t_end)
+                ),
+            });
+        }
         let mut out: Vec<RungSize> = Vec::with_capacity(self.levels);
         let mut total: u64 = 0;
         for k in 0..self.levels {
@@ -151,8 +202,9 @@ impl Ladder {
                 && prev.steps >= steps
             {
                 return Err(Error::InvalidLadder(format!(
-                    "rungs {} and {k} both round to {steps} steps over t_end = {t_end}: use a smaller h0 or a smaller ratio",
-                    k - 1
+                    "rungs {} and {k} both round to {steps} steps over t_end = {}: use a smaller h0 or a smaller ratio",
+                    k - 1,
+                    crate::wording::exact(t_end)
                 )));
             }
             total = total.saturating_add(steps);
@@ -166,22 +218,32 @@ impl Ladder {
     }
 }
 
-/// Whole steps nearest to `t_end / h` (at least one), refusing absurd counts.
+/// Whole steps nearest to `t_end / h` (at least one), refusing absurd counts
+/// with the true count, and a span or step that is not a finite positive
+/// number (whose count would be NaN).
 pub fn steps_for(t_end: f64, h: f64) -> Result<u64, Error> {
+    crate::scene::positive("t_end", t_end)?;
+    crate::scene::positive("h", h)?;
     let n = (t_end / h).round();
-    if !n.is_finite() || n >= MAX_TOTAL_STEPS as f64 {
-        check_cost(u64::MAX)?;
-    }
+    check_count(n)?;
     Ok((n as u64).max(1))
 }
 
 /// Refuses a request of `steps` total steps when it exceeds [`MAX_TOTAL_STEPS`].
 pub fn check_cost(steps: u64) -> Result<(), Error> {
-    if steps > MAX_TOTAL_STEPS {
+    check_count(steps as f64)
+}
+
+/// [`check_cost`] of a count reckoned in floating point, so that a product
+/// of factors (steps times runs, a span over a step) is refused with its
+/// true value, not one saturated at the largest integer.
+pub fn check_count(steps: f64) -> Result<(), Error> {
+    // NaN is refused too: it is no count
+    if !(0.0..=MAX_TOTAL_STEPS as f64).contains(&steps) {
         return Err(Error::TooExpensive {
             steps,
             limit: MAX_TOTAL_STEPS,
-            seconds: steps as f64 * SECONDS_PER_STEP,
+            seconds: steps * SECONDS_PER_STEP,
         });
     }
     Ok(())

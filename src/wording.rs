@@ -31,6 +31,18 @@ pub fn figure(x: f64) -> String {
     significant(x, 3)
 }
 
+/// `x` exactly, as its shortest round-trip digits: plain from `1e-5` to
+/// below `1e16` (`0.1`, `7.3`, `100000`), scientific outside (`1e300`,
+/// `5e-324`, `1.2594140651547697e19`), never a 300-digit integer. For a
+/// value a user typed, which must read back as typed.
+pub fn exact(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// An order (an exponent of `h`): two decimals, `2.00`, so that an order
 /// near zero reads `0.00` rather than its noise.
 pub fn order(p: f64) -> String {

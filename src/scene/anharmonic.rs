@@ -3,7 +3,7 @@
 
 use super::elliptic::{Jacobi, incomplete_f};
 use super::well::Well;
-use super::{Parameters, Parametrised, Scene, SceneMeta, finite};
+use super::{Parameters, Parametrised, Scene, SceneMeta, amplitude};
 use crate::error::Error;
 use crate::state::{Real, State};
 use nalgebra::{SVector, Vector1};
@@ -85,7 +85,7 @@ impl Anharmonic {
     /// ```
     pub fn new(k: f64, alpha: f64, x0: f64, v0: f64) -> Result<Self, Error> {
         let well = Well::new(k, alpha)?;
-        let (x0, v0) = (finite("x0", x0)?, finite("v0", v0)?);
+        let (x0, v0) = (amplitude("x0", x0)?, amplitude("v0", v0)?);
         if x0 == 0.0 && v0 == 0.0 {
             return Err(Error::InvalidScene(
                 "a particle at rest at the bottom of the well never moves: give x0 or v0 a non-zero value"

@@ -1,6 +1,6 @@
 //! The 1-D harmonic oscillator `x'' = -w0^2 x`.
 
-use super::{Parameters, Parametrised, Scene, SceneMeta, finite, positive};
+use super::{Parameters, Parametrised, Scene, SceneMeta, amplitude, scale};
 use crate::error::Error;
 use crate::state::{Real, State};
 use nalgebra::{SVector, Vector1};
@@ -39,7 +39,7 @@ impl Harmonic {
     /// assert!(Harmonic::new(-1.0, 1.0, 0.0).is_err());
     /// ```
     pub fn new(w0: f64, x0: f64, v0: f64) -> Result<Self, Error> {
-        let (w0, x0, v0) = (positive("w0", w0)?, finite("x0", x0)?, finite("v0", v0)?);
+        let (w0, x0, v0) = (scale("w0", w0)?, amplitude("x0", x0)?, amplitude("v0", v0)?);
         if x0 == 0.0 && v0 == 0.0 {
             return Err(Error::InvalidScene(
                 "the oscillator at rest at x = 0 never moves: give x0 or v0 a non-zero value"

@@ -182,17 +182,74 @@ pub fn positive(name: &'static str, value: f64) -> Result<f64, Error> {
     }
 }
 
-/// Rejects a parameter that must be finite.
-pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, Error> {
-    if value.is_finite() {
+/// The range of a scene parameter's magnitude, `[1e-50, 1e50]`: forces,
+/// energies and the squared distances the studies take of errors are
+/// products of up to four such quantities, which then stay within
+/// `[1e-200, 1e200]`, inside the doubles' normal range `[2.2e-308,
+/// 1.8e308]` with a hundred decades for an error to grow before it
+/// overflows, or to shrink before it underflows.
+pub const MAGNITUDES: [f64; 2] = [1e-50, 1e50];
+
+/// Rejects a scale (a frequency, a stiffness, a length) that is not a
+/// finite positive number within [`MAGNITUDES`].
+#[doc(hidden)]
+pub fn scale(name: &'static str, value: f64) -> Result<f64, Error> {
+    if (MAGNITUDES[0]..=MAGNITUDES[1]).contains(&value) {
         Ok(value)
     } else {
         Err(Error::InvalidParameter {
             name,
             value,
-            expected: "a finite number",
+            expected: "a number in [1e-50, 1e50], so that forces, energies and squared errors \
+                       stay within double precision",
         })
     }
+}
+
+/// Rejects an initial coordinate that is not zero or of a magnitude within
+/// [`MAGNITUDES`].
+#[doc(hidden)]
+pub fn amplitude(name: &'static str, value: f64) -> Result<f64, Error> {
+    if value == 0.0 || (value.abs() >= MAGNITUDES[0] && value.abs() <= MAGNITUDES[1]) {
+        Ok(value)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            expected: "0 or a number of magnitude in [1e-50, 1e50], so that forces, energies \
+                       and squared errors stay within double precision",
+        })
+    }
+}
+
+/// Rejects a step that is not in `[SCAN_START / w, SCAN_END / w]`, `w` the
+/// scene's angular frequency: the stability study's scan. Above it, it
+/// calls a scheme stable at every step, so a step beyond tests nothing the
+/// scan has not, and a tangent map or state growing like a power of `h w`
+/// soon leaves the doubles; below it a step changes the state by less than
+/// its rounding can show over a study's run, so any scheme would look exact.
+#[doc(hidden)]
+pub fn step(name: &'static str, h: f64, frequency: f64) -> Result<f64, Error> {
+    use crate::study::stability::{SCAN_END, SCAN_START};
+    use crate::wording::figure;
+    let h = positive(name, h)?;
+    let (smallest, largest) = (SCAN_START / frequency, SCAN_END / frequency);
+    if !(smallest..=largest).contains(&h) {
+        return Err(Error::OutOfRange {
+            name,
+            value: h,
+            expected: format!(
+                "a step in [{}, {}]: h w in [{}, {}] (w = {} the scene's angular frequency), \
+                 the stability scan's range",
+                figure(smallest),
+                figure(largest),
+                figure(SCAN_START),
+                figure(SCAN_END),
+                figure(frequency),
+            ),
+        });
+    }
+    Ok(h)
 }
 
 /// Something to do with one scene, whatever its type and dimension.

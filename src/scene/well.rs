@@ -2,7 +2,7 @@
 //! it, trapped ([`super::Anharmonic`]) or on the separatrix
 //! ([`super::Separatrix`]).
 
-use super::positive;
+use super::scale;
 use crate::error::Error;
 use crate::state::Real;
 
@@ -27,7 +27,7 @@ pub(crate) struct Well {
 impl Well {
     /// The well with stiffness `k > 0` and barriers at `-+alpha`, `alpha > 0`.
     pub(crate) fn new(k: f64, alpha: f64) -> Result<Self, Error> {
-        let (k, alpha) = (positive("k", k)?, positive("alpha", alpha)?);
+        let (k, alpha) = (scale("k", k)?, scale("alpha", alpha)?);
         let quartic = k / alpha / alpha;
         let barrier = 0.25 * k * alpha * alpha;
         // both coefficients enter every force and energy: a well whose

@@ -89,7 +89,10 @@ pub(super) fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {
     } else {
         println!(
             "{} ({}), {} periods, up to {} steps",
-            record.scene, record.scene_parameters, record.periods, record.max_steps
+            record.scene,
+            record.scene_parameters,
+            stepladder::wording::exact(record.periods),
+            record.max_steps
         );
         print!("{}", report::round_off::floor_table(&record));
         println!();
@@ -116,8 +119,9 @@ pub(super) fn speed(args: &SpeedArgs) -> Result<ExitCode, Error> {
             expected: "at least 1",
         });
     }
-    let runs = args.repeats as u64 * (stepladder::scheme::scheme_ids().len() as u64 + 1);
-    stepladder::ladder::check_cost(args.steps.saturating_mul(runs))?;
+    // counted in floating point, so that a refusal prints the true count
+    let runs = args.repeats as f64 * (stepladder::scheme::scheme_ids().len() + 1) as f64;
+    stepladder::ladder::check_count(args.steps as f64 * runs)?;
     let record = stepladder::study::cost::step_time::speed(args.steps, args.repeats);
     if args.json {
         print_json(&record);
@@ -136,11 +140,11 @@ pub(super) fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
         None => stepladder::scheme::compensated::pair_ids(),
     };
     // refuse the whole request up front, not after some runs
-    let per_scheme = args
-        .steps
-        .unwrap_or(stepladder::study::round_off::longrun::DEFAULT_STEPS)
-        .saturating_mul(stepladder::study::round_off::longrun::RUNS as u64);
-    stepladder::ladder::check_cost(per_scheme.saturating_mul(ids.len() as u64))?;
+    let per_scheme =
+        args.steps
+            .unwrap_or(stepladder::study::round_off::longrun::DEFAULT_STEPS) as f64
+            * stepladder::study::round_off::longrun::RUNS as f64;
+    stepladder::ladder::check_count(per_scheme * ids.len() as f64)?;
     let records = ids
         .into_iter()
         .map(|id| longrun_of(&scene, id, &spec))

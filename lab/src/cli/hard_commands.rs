@@ -103,11 +103,18 @@ pub(super) fn eccentric(a: &EccentricArgs) -> Result<ExitCode, Error> {
         KeplerEccentric::new(e)?;
     }
     let cap = a.max_rung_steps.unwrap_or(ECCENTRIC_MAX_RUNG_STEPS);
-    if cap < 8 {
-        return Err(Error::InvalidParameter {
+    // the rung cap in force evaluations, for schemes of up to 17 a step,
+    // within the automatic ladder's range (AutoLadder::checked)
+    let most = stepladder::ladder::MAX_TOTAL_STEPS / 4 / 17;
+    if !(stepladder::ladder::MIN_RUNG_EVALUATIONS..=most).contains(&cap) {
+        return Err(Error::OutOfRange {
             name: "max-rung-steps",
             value: cap as f64,
-            expected: "at least 8 steps",
+            expected: format!(
+                "a number of steps in [{}, {most}]: enough for a window's rungs, and a ladder \
+                 within the step limit for a scheme of 17 force evaluations a step",
+                stepladder::ladder::MIN_RUNG_EVALUATIONS
+            ),
         });
     }
     let order_ids = schemes(&a.scheme, &ORDER_SCHEMES)?;

@@ -22,6 +22,7 @@ use stepladder::study::geometry::energy::EnergySpec;
 use stepladder::study::geometry::reverse::ReverseSpec;
 use stepladder::study::geometry::symplectic::SymplecticSpec;
 use stepladder::study::stability::{StabilityRecord, stability};
+use stepladder::wording::exact;
 
 mod cost_commands;
 mod hard_commands;
@@ -272,7 +273,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 "{} on {}: h = {}, {} steps, max relative energy error {:.3e}, g = {}, {}",
                 r.scheme,
                 r.scene,
-                r.h,
+                exact(r.h),
                 r.steps,
                 r.max_relative_energy_error,
                 r.growth_exponent.map_or("-".into(), |g| format!("{g:.3}")),
@@ -303,7 +304,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 r.scheme,
                 r.scene,
                 r.steps,
-                r.h,
+                exact(r.h),
                 r.return_error.map_or("-".into(), |e| format!("{e:.3e}")),
                 r.reason
             );
@@ -527,7 +528,11 @@ fn exit_for(passed: bool) -> ExitCode {
 fn print_order(r: &OrderRecord) {
     println!(
         "{} on {} ({}), t_end = {}: theoretical order {}",
-        r.scheme, r.scene, r.scene_parameters, r.t_end, r.theoretical_order
+        r.scheme,
+        r.scene,
+        r.scene_parameters,
+        exact(r.t_end),
+        r.theoretical_order
     );
     println!(
         "{:>4} {:>11} {:>10} {:>11} {:>11} {:>11} {:>7}  status",

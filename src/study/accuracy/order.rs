@@ -86,6 +86,42 @@ impl Default for OrderSpec {
     }
 }
 
+impl OrderSpec {
+    /// The end time asked for (`None` for the scene's default), refused
+    /// before any run unless it is a finite positive number at least one
+    /// step long: at least the fixed ladder's `h0`, or, for the automatic
+    /// ladder, its first step of [`AUTO_START`] periods. The ladder's own
+    /// settings are checked too ([`AutoLadder::checked`]); the cost of the
+    /// rungs is checked when they are laid out.
+    pub fn checked(&self, period: f64) -> Result<Option<f64>, Error> {
+        if let LadderChoice::AutoWith(settings) = self.ladder {
+            settings.checked()?;
+        }
+        let Some(t_end) = self.t_end else {
+            return Ok(None);
+        };
+        let t_end = crate::scene::positive("t_end", t_end)?;
+        let (first, which) = match self.ladder {
+            LadderChoice::Fixed(ladder) => (ladder.h0, "the ladder's first step h0"),
+            _ => (
+                AUTO_START * period,
+                "the automatic ladder's first step, 1/8 period",
+            ),
+        };
+        if t_end < first {
+            return Err(Error::OutOfRange {
+                name: "t_end",
+                value: t_end,
+                expected: format!(
+                    "a finite number of at least {} ({which}): at least one step",
+                    crate::wording::exact(first)
+                ),
+            });
+        }
+        Ok(Some(t_end))
+    }
+}
+
 /// Everything the order study found: the record behind the CLI's `--json`,
 /// the snapshots and the report.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -209,10 +245,9 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
     scene: &S,
     spec: &OrderSpec,
 ) -> Result<OrderRecord, Error> {
-    let t_end = match spec.t_end {
-        Some(t) => crate::scene::positive("t_end", t)?,
-        None => scene.default_t_end(),
-    };
+    let t_end = spec
+        .checked(scene.period())?
+        .unwrap_or_else(|| scene.default_t_end());
     let mut record = order_at(scheme, scene, spec.ladder, t_end)?;
     if spec.t_end.is_some() || matches!(spec.ladder, LadderChoice::Fixed(_)) {
         return Ok(record);

@@ -349,7 +349,9 @@ fn reference_name(r: Reference) -> &'static str {
     }
 }
 
-/// The pin file of `scheme_id` on `scene_id` in `dir`.
+/// The pin file of `scheme_id` on `scene_id` in `dir`: a file of `dir`
+/// only for plain kebab-case ids, which [`check_pin`] asks of both before
+/// it makes the path ([`crate::error::is_kebab_case`]).
 pub fn pin_path(dir: &Path, scheme_id: &str, scene_id: &str) -> PathBuf {
     dir.join(format!("{scheme_id}__{scene_id}.pin"))
 }
@@ -434,6 +436,10 @@ pub fn check_pin_with<M: Scheme, S: Scene<D>, const D: usize>(
     let meta = scheme.meta();
     let scene_id = scene.meta().id;
     let who = format!("stepladder: `{}` on `{scene_id}`", meta.id);
+    // ids name the pin file: one that is a path would write outside `dir`
+    crate::error::kebab_id("scheme", meta.id)
+        .and_then(|_| crate::error::kebab_id("scene", scene_id))
+        .map_err(|e| format!("{who}: {e}"))?;
     let record = global_order(scheme, scene, &OrderSpec::default())
         .map_err(|e: Error| format!("{who}: the order study could not run: {e}"))?;
     if record.verdict != Verdict::Pass {

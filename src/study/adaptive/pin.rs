@@ -29,6 +29,7 @@
 use super::integrator::{AdaptiveIntegrator, RunEnd};
 use super::ladder::point;
 use super::record::ToleranceLadderRecord;
+use crate::error::Error;
 use crate::scene::{Scaled, Scene};
 use crate::study::accuracy::pin::{missing_under_ci, pin_fields, printed, write_pin};
 use crate::tolerance::TWIN_SCALE;
@@ -139,9 +140,36 @@ impl AdaptivePin {
     }
 }
 
-/// Where the pin of `integrator` on `scene` lives in `dir`.
+/// Where the pin of `integrator` on `scene` lives in `dir`: the
+/// integrator's name is a display name (`DPRKN6(4) adaptive`), so the file
+/// takes its kebab-case form ([`file_stem`]); the scene id, plain
+/// kebab-case, is checked by [`check_adaptive_pin`] before.
 pub fn adaptive_pin_path(dir: &Path, integrator: &str, scene: &str) -> PathBuf {
-    dir.join(format!("{integrator}__{scene}.adaptive.pin"))
+    dir.join(format!("{}__{scene}.adaptive.pin", file_stem(integrator)))
+}
+
+/// `name` in plain kebab-case: its ASCII letters lower-cased and digits
+/// kept, every other run of characters one hyphen, none at either end
+/// (`DPRKN6(4) adaptive` is `dprkn6-4-adaptive`). Never a path.
+pub fn file_stem(name: &str) -> String {
+    name.split(|c: char| !c.is_ascii_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(str::to_ascii_lowercase)
+        .collect::<Vec<_>>()
+        .join("-")
+}
+
+/// Refuses an integrator name with no letter or digit, or one that is a
+/// path (a separator, a `..`), and a scene id that is not plain kebab-case.
+fn check_names(integrator: &str, scene: &str) -> Result<(), Error> {
+    let path_like = integrator.contains(['/', '\\']) || integrator.contains("..");
+    if file_stem(integrator).is_empty() || path_like {
+        return Err(Error::InvalidId {
+            what: "integrator",
+            id: integrator.to_string(),
+        });
+    }
+    crate::error::kebab_id("scene", scene).map(|_| ())
 }
 
 /// Checks the error at the pinned tolerance against the pin in `dir`,
@@ -180,6 +208,7 @@ pub fn check_adaptive_pin_with<I: AdaptiveIntegrator, S: Scene<D>, const D: usiz
         integrator.name(),
         scene.meta().id
     );
+    check_names(integrator.name(), scene.meta().id).map_err(|e| format!("{who}: {e}"))?;
     let path = adaptive_pin_path(dir, integrator.name(), scene.meta().id);
     match std::fs::read_to_string(&path).ok() {
         Some(text) if !update => {

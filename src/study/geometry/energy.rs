@@ -13,7 +13,7 @@
 //! says what was measured.
 
 use crate::error::Error;
-use crate::ladder::{check_cost, steps_for};
+use crate::ladder::{check_cost, check_count, steps_for};
 use crate::maths::fit::power_law;
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
@@ -135,6 +135,60 @@ pub struct EnergySpec {
     pub periods: Option<f64>,
 }
 
+impl EnergySpec {
+    /// The run's length in periods and the step asked for, refused before
+    /// any run unless the run has at least one step and at most
+    /// [`MAX_TOTAL_STEPS`](crate::ladder::MAX_TOTAL_STEPS): `periods` finite
+    /// and positive with a finite end time `periods * period`; a given `h` in
+    /// `(0, periods * period]`; without one, at least [`DEFAULT_STEP`]
+    /// periods. The default step resolving the motion is halved with the
+    /// run's length, so its count is `periods / DEFAULT_STEP` whatever the
+    /// halvings.
+    pub fn checked(&self, period: f64) -> Result<(f64, Option<f64>), Error> {
+        let periods = crate::scene::positive("periods", self.periods.unwrap_or(DEFAULT_PERIODS))?;
+        let t_end = periods * period;
+        if !t_end.is_finite() {
+            return Err(Error::OutOfRange {
+                name: "periods",
+                value: periods,
+                expected: format!(
+                    "a number in (0, {}]: the run's end time, periods times the period {}, must \
+                     be a finite number",
+                    figure(f64::MAX / period),
+                    figure(period)
+                ),
+            });
+        }
+        let Some(h) = self.h else {
+            if periods < DEFAULT_STEP {
+                return Err(Error::OutOfRange {
+                    name: "periods",
+                    value: periods,
+                    expected: format!(
+                        "at least {DEFAULT_STEP} periods, one default step (or give the step h)"
+                    ),
+                });
+            }
+            check_count(periods / DEFAULT_STEP)?;
+            return Ok((periods, None));
+        };
+        let h = crate::scene::positive("h", h)?;
+        if h > t_end {
+            return Err(Error::OutOfRange {
+                name: "h",
+                value: h,
+                expected: format!(
+                    "a step in (0, {}]: at least one step over the run of {} periods",
+                    figure(t_end),
+                    crate::wording::exact(periods)
+                ),
+            });
+        }
+        check_count(t_end / h)?;
+        Ok((periods, Some(h)))
+    }
+}
+
 /// How the energy error grows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -217,9 +271,9 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
     let meta = scheme.meta();
     // a symplectic or a symmetric scheme promises no secular drift
     let conserves = meta.symplectic || meta.symmetric;
-    let periods = crate::scene::positive("periods", spec.periods.unwrap_or(DEFAULT_PERIODS))?;
-    let (h, choice) = match spec.h {
-        Some(h) => (crate::scene::positive("h", h)?, StepChoice::Given),
+    let (periods, given) = spec.checked(scene.period())?;
+    let (h, choice) = match given {
+        Some(h) => (h, StepChoice::Given),
         None if conserves => resolving_step(scheme, scene),
         None => (DEFAULT_STEP * scene.period(), StepChoice::Given),
     };

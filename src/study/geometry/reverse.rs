@@ -2,7 +2,7 @@
 //! synchronised end state; a time-symmetric scheme comes back to round-off.
 
 use crate::error::Error;
-use crate::ladder::check_cost;
+use crate::ladder::check_count;
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
@@ -26,6 +26,42 @@ pub struct ReverseSpec {
     pub h: Option<f64>,
     /// Steps each way; `None` for [`DEFAULT_STEPS`].
     pub steps: Option<u64>,
+}
+
+impl ReverseSpec {
+    /// The step and the steps each way, refused before any run unless the
+    /// step is in `[SCAN_START / w, SCAN_END / w]` ([`crate::scene::step`]),
+    /// there is at least one step, the round trip's `2 steps` are at most
+    /// [`MAX_TOTAL_STEPS`](crate::ladder::MAX_TOTAL_STEPS), and its turning
+    /// time `steps * h` is a finite number.
+    pub fn checked(&self, period: f64, frequency: f64) -> Result<(f64, u64), Error> {
+        let h = match self.h {
+            Some(h) => crate::scene::step("h", h, frequency)?,
+            None => DEFAULT_STEP * period,
+        };
+        let steps = self.steps.unwrap_or(DEFAULT_STEPS);
+        if steps == 0 {
+            return Err(Error::InvalidParameter {
+                name: "steps",
+                value: 0.0,
+                expected: "at least 1",
+            });
+        }
+        // counted in floating point: twice a huge count must not saturate
+        check_count(2.0 * steps as f64)?;
+        if !(steps as f64 * h).is_finite() {
+            return Err(Error::OutOfRange {
+                name: "h",
+                value: h,
+                expected: format!(
+                    "a step in (0, {}]: the turning time, {steps} steps of h, must be a finite \
+                     number",
+                    figure(f64::MAX / steps as f64)
+                ),
+            });
+        }
+        Ok((h, steps))
+    }
 }
 
 /// What the reversibility study found.
@@ -68,19 +104,7 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
     scene: &S,
     spec: &ReverseSpec,
 ) -> Result<ReverseRecord, Error> {
-    let h = match spec.h {
-        Some(h) => crate::scene::positive("h", h)?,
-        None => DEFAULT_STEP * scene.period(),
-    };
-    let steps = spec.steps.unwrap_or(DEFAULT_STEPS);
-    if steps == 0 {
-        return Err(Error::InvalidParameter {
-            name: "steps",
-            value: 0.0,
-            expected: "at least 1",
-        });
-    }
-    check_cost(steps.saturating_mul(2))?;
+    let (h, steps) = spec.checked(scene.period(), scene.frequency())?;
     let start = scene.initial();
     let meta = scheme.meta();
     // A time-symmetric scheme returns from every step at which it is stable

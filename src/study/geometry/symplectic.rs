@@ -82,7 +82,7 @@ pub fn symplecticity<M: Scheme, S: Scene<D>, const D: usize>(
 ) -> Result<SymplecticRecord, Error> {
     let period = scene.period();
     let steps: Vec<f64> = match spec.h {
-        Some(h) => vec![crate::scene::positive("h", h)?],
+        Some(h) => vec![crate::scene::step("h", h, scene.frequency())?],
         None => DEFAULT_STEPS.iter().map(|f| f * period).collect(),
     };
     let states: Vec<(f64, State<D>)> = match scene.exact(0.0) {

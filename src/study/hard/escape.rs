@@ -39,14 +39,22 @@ pub struct EscapeSpec {
     pub delta: f64,
 }
 
+/// The smallest relative gap from the barrier: `1e-12`, some ten thousand
+/// rounding units (`2.2e-16`) of the energy, so the orbits on both sides are
+/// told apart by more than the round-off of their energies.
+pub const MIN_DELTA: f64 = 1e-12;
+
 impl EscapeSpec {
     /// The course notes' well with a gap of `delta`.
     pub fn new(delta: f64) -> Result<Self, Error> {
-        if !(delta > 0.0 && delta < 1.0) {
+        // below MIN_DELTA the gap is lost in the rounding of E_b (1 - delta)
+        if !(MIN_DELTA..1.0).contains(&delta) {
             return Err(Error::InvalidParameter {
                 name: "delta",
                 value: delta,
-                expected: "a relative energy gap in (0, 1) (the trapped energy E_b (1 - delta) must stay positive)",
+                expected: "a relative energy gap in [1e-12, 1) (the trapped energy E_b (1 - delta) \
+                           must stay positive, and its gap from E_b resolved by ten thousand \
+                           rounding units of the energy)",
             });
         }
         Ok(Self {

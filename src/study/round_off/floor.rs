@@ -41,7 +41,7 @@
 //! `g = 1/2`, `7/3 C h*^2` for `g = 3/2`.
 
 use crate::error::Error;
-use crate::ladder::{check_cost, steps_for};
+use crate::ladder::{check_count, steps_for};
 use crate::maths::fit::{PowerLaw, power_law};
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::Scheme;
@@ -154,19 +154,36 @@ pub struct RoundoffRecord {
 /// The run length and step cap a spec means on a scene of this period.
 fn resolve(spec: &RoundoffSpec, period: f64) -> Result<(f64, u64), Error> {
     let periods = crate::scene::positive("periods", spec.periods.unwrap_or(DEFAULT_PERIODS))?;
+    // the ladder's first rung is one step of START periods
+    if periods < START || !(periods * period).is_finite() {
+        return Err(Error::OutOfRange {
+            name: "periods",
+            value: periods,
+            expected: format!(
+                "a number in [{START}, {}]: at least the ladder's first step of {START} period, \
+                 and a finite end time",
+                crate::wording::figure(f64::MAX / period)
+            ),
+        });
+    }
     let per_period = spec.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
+    let too_few = || Error::InvalidParameter {
+        name: "max_steps",
+        value: per_period as f64,
+        expected: "at least 64 steps per period, so the ladder has a few rungs",
+    };
+    if per_period < 64 {
+        return Err(too_few());
+    }
+    // the ladder halves the step, so its rungs add up to at most twice the
+    // finest, and each step is taken by two schemes; counted in floating
+    // point, so that a refusal prints the true count
+    check_count(4.0 * periods * per_period as f64)?;
     let first = steps_for(periods * period, START * period)?;
     let max_steps = steps_for(periods * period, period / per_period as f64)?;
     if max_steps < first << 3 {
-        return Err(Error::InvalidParameter {
-            name: "max_steps",
-            value: per_period as f64,
-            expected: "at least 64 steps per period, so the ladder has a few rungs",
-        });
+        return Err(too_few());
     }
-    // the ladder halves the step, so its rungs add up to at most twice the
-    // finest, and each step is taken by two schemes
-    check_cost(max_steps.saturating_mul(4))?;
     Ok((periods * period, max_steps))
 }
 

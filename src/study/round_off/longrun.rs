@@ -31,7 +31,7 @@
 //! quantity per step: the same random walk, `h w` times smaller.
 
 use crate::error::Error;
-use crate::ladder::check_cost;
+use crate::ladder::check_count;
 use crate::maths::fit::power_law;
 use crate::scene::{AnyScene, Harmonic, KeplerCircular, KeplerEccentric, Scene};
 use crate::scheme::Scheme;
@@ -189,7 +189,7 @@ pub fn longrun<M: Scheme, S: Conserved<D>, const D: usize>(
             expected: "at least 10000, so two decades of growth can be fitted",
         });
     }
-    check_cost(steps.saturating_mul(RUNS as u64))?;
+    check_count(steps as f64 * RUNS as f64)?;
     let period = scene.period();
     let h = DEFAULT_STEP * period;
     let times = sample_steps(steps);
