@@ -14,6 +14,7 @@ mod figures;
 mod geometry;
 mod hard;
 mod implicit;
+mod input_properties;
 mod lab_units;
 mod nbody;
 mod nystrom_conditions;
