@@ -129,7 +129,7 @@ pub fn utsuroi_stormer_verlet() -> Audit {
                 glue::utsuroi_step(UtsuroiFixed::StormerVerlet, q, v, h, f)
             },
         ),
-        holds("kick-drift-kick Verlet as written in verlet.rs:24-55; probe: order 2 on Kepler"),
+        holds("kick-drift-kick Verlet as written in verlet.rs:24-55"),
     ))
 }
 
@@ -174,7 +174,7 @@ utsuroi_yoshida!(
         unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
         said(Evaluations, "Cost: 6 force evaluations per step (3 Verlet substeps × 2).", "utsuroi-0.2.0/src/solver/yoshida.rs:77"),
     ],
-    "composition check of the published weights: sum g = 1, sum g^3 = 0, observed local order 5 on Kepler"
+    "composition check of the published weights: sum g = 1, sum g^3 = 0"
 );
 utsuroi_yoshida!(
     utsuroi_yoshida6,
@@ -216,7 +216,7 @@ utsuroi_yoshida!(
         unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
         said(Evaluations, "Cost: 30 force evaluations per step.", "utsuroi-0.2.0/src/solver/yoshida.rs:91"),
     ],
-    "composition check of the published weights: order 8 (local slope 8.8)"
+    "composition check of the published weights: order 8"
 );
 
 pub fn utsuroi_rk4() -> Audit {
@@ -278,7 +278,7 @@ pub fn utsuroi_dormand_prince() -> Audit {
         AdaptiveExpectation {
             verdict: Pass,
             first_order_estimate: false,
-            why: "Butcher-tree check: b order 5, b - e order 4; probe: error follows TOL on Kepler e = 0.5",
+            why: "Butcher-tree check: b order 5, b - e order 4",
             evidence: &[],
         },
     ))
@@ -519,7 +519,7 @@ pub fn os_dopri5() -> Audit {
         AdaptiveExpectation {
             verdict: Pass,
             first_order_estimate: false,
-            why: "Butcher-tree check: b order 5, b - e order 4, rows consistent; probe: order 5.00 at fixed h",
+            why: "Butcher-tree check: b order 5, b - e order 4, rows consistent",
             evidence: &[],
         },
     ))

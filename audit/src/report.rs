@@ -307,10 +307,18 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
                 if !refuted {
                     continue;
                 }
+                let ladder_failed = x.rows.iter().any(|r| r.verdict == Verdict::Fail);
                 let _ = writeln!(
                     s,
-                    "- {} {}: estimate order (reproduce: `cargo test --release --test audit {}`)",
-                    p.krate, p.method, p.test
+                    "- {} {}: {} (reproduce: `cargo test --release --test audit {}`)",
+                    p.krate,
+                    p.method,
+                    if ladder_failed {
+                        "order and estimate order (tolerance ladder)"
+                    } else {
+                        "estimate order (step growth)"
+                    },
+                    p.test
                 );
                 for e in evidence_on(x.expected.evidence, &[Prop::Estimate, Prop::Order]) {
                     let _ = writeln!(s, "  - {e}");
