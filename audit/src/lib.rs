@@ -1,6 +1,7 @@
-//! An audit of integrators published by other crates: each method's
-//! documented claims against stepladder's studies, run through the public
-//! black-box adapters on autonomous scenes q'' = a(q).
+//! An audit of integrators published by other crates: each method's claims,
+//! quoted from its crate with file and line or marked not claimed, against
+//! stepladder's studies, run through the public black-box adapters on
+//! autonomous scenes q'' = a(q).
 //!
 //! Every method carries the verdicts expected of it, each with the reason
 //! that does not come from this harness: a coefficient check of the
@@ -25,23 +26,120 @@ use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
 use stepladder::scene::{Harmonic, KeplerEccentric, Scene};
 use stepladder::scheme::Scheme;
 
-/// Where a method's claims were read, and what a claim is expected to do.
+/// The words in which a crate states a property of a method, quoted, and
+/// where they stand in its published source (`crate-version/path:line`, or
+/// `:first-last` when the sentence runs over several lines).
+#[derive(Clone, Copy, Debug)]
+pub struct Cited {
+    pub quote: &'static str,
+    pub at: &'static str,
+}
+
+/// The properties the audit looks at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Prop {
+    /// Order of the solution advanced.
+    Order,
+    Symplectic,
+    /// Symmetric (time-reversible) as a map.
+    Symmetric,
+    /// Long-term energy behaviour.
+    Energy,
+    /// Force (right-hand side) evaluations per step.
+    Evaluations,
+    /// Order of an adaptive pair's error estimate.
+    Estimate,
+}
+
+impl Prop {
+    pub fn name(self) -> &'static str {
+        match self {
+            Prop::Order => "order",
+            Prop::Symplectic => "symplectic",
+            Prop::Symmetric => "symmetric",
+            Prop::Energy => "energy",
+            Prop::Evaluations => "evaluations",
+            Prop::Estimate => "estimate order",
+        }
+    }
+}
+
+/// One property of a method: the crate's statement of it, if it makes
+/// one, and what the value the studies test rests on when it does not.
+#[derive(Clone, Copy, Debug)]
+pub struct Property {
+    pub prop: Prop,
+    /// `None`: the crate does not claim it.
+    pub claim: Option<Cited>,
+    /// The source of the tested value when nothing is claimed (theory of
+    /// the method the crate names, or its published source), or a remark on
+    /// the claim.
+    pub basis: &'static str,
+}
+
+/// A property the crate states, in its own words.
+pub const fn said(prop: Prop, quote: &'static str, at: &'static str) -> Property {
+    Property {
+        prop,
+        claim: Some(Cited { quote, at }),
+        basis: "",
+    }
+}
+
+/// A property the crate states, with a remark on what the audit tests.
+pub const fn said_and(
+    prop: Prop,
+    quote: &'static str,
+    at: &'static str,
+    basis: &'static str,
+) -> Property {
+    Property {
+        prop,
+        claim: Some(Cited { quote, at }),
+        basis,
+    }
+}
+
+/// A property the crate does not claim; `basis` says where the tested
+/// value comes from.
+pub const fn unsaid(prop: Prop, basis: &'static str) -> Property {
+    Property {
+        prop,
+        claim: None,
+        basis,
+    }
+}
+
+/// A method, where its claims were read, and what is expected of them.
 #[derive(Clone, Copy, Debug)]
 pub struct Provenance {
     /// The crate and version.
     pub krate: &'static str,
     /// The method's name in the crate.
     pub method: &'static str,
-    /// Where the claims come from (documentation or source, file:line).
-    pub claims_from: &'static str,
+    /// Each property looked at: quoted from the crate, or not claimed.
+    pub properties: &'static [Property],
     /// The fewest force evaluations per step the method needs (with a
     /// first-same-as-last force where it can have one), for comparison.
     pub minimum_evaluations: u32,
-    /// Why the evaluations claim is what it is: documented, or the true count.
-    pub evaluations_claim: &'static str,
     /// The reproduction: the audit test that runs this method alone.
     pub test: &'static str,
 }
+
+impl Provenance {
+    /// The property `prop`, if listed.
+    pub fn property(&self, prop: Prop) -> Option<&Property> {
+        self.properties.iter().find(|p| p.prop == prop)
+    }
+
+    /// Whether the crate claims `prop`.
+    pub fn claims(&self, prop: Prop) -> bool {
+        self.property(prop).is_some_and(|p| p.claim.is_some())
+    }
+}
+
+/// One line of independent evidence and the properties it bears on.
+pub type Evidence = (&'static [Prop], &'static str);
 
 /// The verdicts expected of a fixed-step method's five claims on one scene,
 /// in the order order, symplectic, reversible, energy, evaluations.
@@ -49,6 +147,15 @@ pub type ClaimVerdicts = [Verdict; 5];
 
 /// The names of the five claims, in [`ClaimVerdicts`] order.
 pub const CLAIMS: [&str; 5] = ["order", "symplectic", "reversible", "energy", "evaluations"];
+
+/// The properties of [`ClaimVerdicts`], in its order.
+pub const FIXED_PROPS: [Prop; 5] = [
+    Prop::Order,
+    Prop::Symplectic,
+    Prop::Symmetric,
+    Prop::Energy,
+    Prop::Evaluations,
+];
 
 /// The verdict expected of each claim of a fixed-step method on each scene,
 /// and why (independently of this harness).
@@ -60,8 +167,8 @@ pub struct FixedExpectation {
     pub kepler: ClaimVerdicts,
     /// The independent reason for the expectation.
     pub why: &'static str,
-    /// One line of independent evidence per refuted claim.
-    pub evidence: &'static [&'static str],
+    /// Independent evidence for each verdict that is not a pass.
+    pub evidence: &'static [Evidence],
 }
 
 /// What the studies measured of one fixed-step method on one scene.
@@ -73,13 +180,19 @@ pub struct FixedRow {
     pub order: Verdict,
     pub symplectic: Verdict,
     pub symplectic_residual: f64,
+    /// The maps sampled are symplectic to the allowance.
+    pub symplectic_measured: bool,
     pub reversible: Verdict,
     pub return_ulps: Option<f64>,
+    /// The round trip returned within its allowance.
+    pub reversible_measured: bool,
     pub energy: Verdict,
     pub energy_growth: Option<f64>,
+    pub energy_class: Option<stepladder::study::geometry::energy::EnergyClass>,
     pub evaluations: Verdict,
     pub per_step: f64,
-    pub reasons: Vec<String>,
+    /// Each study's failure, if any, in [`ClaimVerdicts`] order.
+    pub reasons: [Option<String>; 5],
 }
 
 /// A fixed-step method's audit: claims, expectation, rows per scene.
@@ -117,10 +230,13 @@ fn fixed_row<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> F
         order: order.verdict,
         symplectic: symplectic.verdict,
         symplectic_residual: symplectic.symplectic_residual,
+        symplectic_measured: symplectic.measured,
         reversible: reverse.verdict,
         return_ulps: reverse.return_ulps,
+        reversible_measured: reverse.measured,
         energy: energy.verdict,
         energy_growth: energy.growth_exponent,
+        energy_class: energy.class,
         evaluations: counted.verdict,
         per_step: counted.per_step,
         reasons: [
@@ -129,10 +245,7 @@ fn fixed_row<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> F
             guard::reverse_failure(&reverse),
             guard::energy_failure(&energy),
             guard::evaluation_failure(&counted),
-        ]
-        .into_iter()
-        .flatten()
-        .collect(),
+        ],
     }
 }
 
@@ -163,7 +276,7 @@ pub struct AdaptiveExpectation {
     /// faster than `TOL^(-1/2)` (see [`FIRST_ORDER_GROWTH`]).
     pub first_order_estimate: bool,
     pub why: &'static str,
-    pub evidence: &'static [&'static str],
+    pub evidence: &'static [Evidence],
 }
 
 /// The step-growth exponent above which an estimate is at best first order
@@ -328,7 +441,7 @@ pub fn disagreements(audit: &Audit) -> Vec<String> {
                             got.name(),
                             want.name(),
                             a.expected.why,
-                            row.reasons.join(" | ")
+                            row.reasons.iter().flatten().cloned().collect::<Vec<_>>().join(" | ")
                         ));
                     }
                 }

@@ -1,14 +1,22 @@
-//! The audited methods: each one's claims as its crate documents them, the
-//! verdict expected of every claim, and the independent reason for it.
+//! The audited methods: each property the audit tests, with the sentence in
+//! which the crate states it (quoted, with its file and line in the
+//! published source) or marked as not claimed, together with the value
+//! tested, the verdict expected, and the independent reason for it.
 //!
-//! "Independent" means not measured by this harness: a Butcher-tree or
-//! composition check run on the coefficients read from the published source,
-//! a source line, or a standalone program calling the crate. Those checks
-//! live beside the audit's research notes; their results are quoted here.
+//! A property the crate does not claim is still tested, against the value
+//! the method it names has in theory (Gauss-Legendre is symplectic, a
+//! palindromic composition symmetric) or the cost its own table needs; a
+//! miss is then a finding about the implementation, never a refuted claim.
+//!
+//! "Independent" means not measured by this harness: a source line, or a
+//! check calling the crate directly in `tests/independent.rs`, named beside
+//! each figure it reproduces.
 
 use crate::glue::{self, OsPair, UtsuroiFixed};
+use crate::Prop::{Energy, Estimate, Evaluations, Order, Symmetric, Symplectic};
 use crate::{
-    AdaptiveExpectation, Audit, FixedExpectation, Provenance, audit_adaptive, audit_fixed,
+    AdaptiveExpectation, Audit, Evidence, FixedExpectation, Property, Provenance,
+    audit_adaptive, audit_fixed, said, said_and, unsaid,
 };
 use differential_equations::methods::SymplecticIntegrator;
 use differential_equations::prelude::ExplicitRungeKutta;
@@ -56,7 +64,7 @@ const fn holds(why: &'static str) -> FixedExpectation {
 const fn except(
     verdicts: [stepladder::study::Verdict; 5],
     why: &'static str,
-    evidence: &'static [&'static str],
+    evidence: &'static [Evidence],
 ) -> FixedExpectation {
     FixedExpectation {
         harmonic: verdicts,
@@ -66,6 +74,30 @@ const fn except(
     }
 }
 
+/// Symplecticity, symmetry and energy not claimed by a Runge-Kutta method
+/// that is neither: the studies test "not symplectic, not symmetric", which
+/// promises nothing, and report what they measure.
+const RK_NOT_GEOMETRIC: [Property; 3] = [
+    unsaid(Symplectic, "explicit Runge-Kutta: not symplectic in theory (tested: no)"),
+    unsaid(Symmetric, "explicit Runge-Kutta: not symmetric in theory (tested: no)"),
+    unsaid(Energy, "tested: drift allowed, as for a scheme neither symplectic nor symmetric"),
+];
+
+/// What is tested of a Gauss-Legendre method the crate claims only the
+/// order of: the properties of Gauss collocation in theory.
+const GL4_NOT_CLAIMED: [Property; 4] = [
+    unsaid(
+        Symplectic,
+        "not claimed (the doc's only other statement is \"better stability properties compared to explicit methods\", ode.rs:1204); tested: yes, as Gauss collocation is symplectic in theory",
+    ),
+    unsaid(Symmetric, "not claimed; tested: yes, as Gauss collocation is symmetric in theory"),
+    unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
+    unsaid(
+        Evaluations,
+        "not claimed; shown, not judged (an implicit method's iterations are its own); 2 = stages",
+    ),
+];
+
 // ---------------------------------------------------------------- utsuroi
 
 pub fn utsuroi_stormer_verlet() -> Audit {
@@ -73,9 +105,22 @@ pub fn utsuroi_stormer_verlet() -> Audit {
         Provenance {
             krate: "utsuroi 0.2.0",
             method: "StormerVerlet",
-            claims_from: "doc solver/verlet.rs:7-23: \"2nd-order symplectic\", kick-drift-kick (symmetric by construction)",
+            properties: const { &[
+                said(Order, "A 2nd-order symplectic method for separable Hamiltonian systems", "utsuroi-0.2.0/src/solver/verlet.rs:9"),
+                said(Symplectic, "A 2nd-order symplectic method for separable Hamiltonian systems", "utsuroi-0.2.0/src/solver/verlet.rs:9"),
+                said_and(
+                    Symmetric,
+                    "Verlet is time-reversible: N steps forward + N steps backward = identity.",
+                    "utsuroi-0.2.0/src/solver/verlet.rs:466",
+                    "stated on the crate's own test, not in its API docs",
+                ),
+                said(Energy, "has excellent long-term energy conservation properties", "utsuroi-0.2.0/src/solver/verlet.rs:11-12"),
+                unsaid(
+                    Evaluations,
+                    "not claimed; tested: 2, the two kicks of the kick-drift-kick form the doc writes out (verlet.rs:20-23); 1 if the last force were kept for the next step",
+                ),
+            ] },
             minimum_evaluations: 1,
-            evaluations_claim: "true count (the doc gives none): a(q_n) is recomputed although the previous step ended with it",
             test: "utsuroi_stormer_verlet",
         },
         &BlackBox::new(
@@ -84,20 +129,19 @@ pub fn utsuroi_stormer_verlet() -> Audit {
                 glue::utsuroi_step(UtsuroiFixed::StormerVerlet, q, v, h, f)
             },
         ),
-        holds("kick-drift-kick Verlet as written in verlet.rs:24-55; probe: order 2 on Kepler"),
+        holds("kick-drift-kick Verlet as written in verlet.rs:24-55"),
     ))
 }
 
 macro_rules! utsuroi_yoshida {
-    ($fn:ident, $variant:ident, $id:literal, $order:literal, $evals:literal, $min:literal, $doc:literal, $why:literal) => {
+    ($fn:ident, $variant:ident, $id:literal, $order:literal, $evals:literal, $min:literal, $props:expr, $why:literal) => {
         pub fn $fn() -> Audit {
             Audit::Fixed(audit_fixed(
                 Provenance {
                     krate: "utsuroi 0.2.0",
                     method: stringify!($variant),
-                    claims_from: $doc,
+                    properties: const { $props },
                     minimum_evaluations: $min,
-                    evaluations_claim: "documented (\"Cost: N force evaluations per step\", solver/yoshida.rs:77-91)",
                     test: stringify!($fn),
                 },
                 &BlackBox::new(
@@ -118,8 +162,19 @@ utsuroi_yoshida!(
     4,
     6,
     3,
-    "doc solver/yoshida.rs:73-77: 4th order, symplectic, 3 Verlet substeps (palindromic)",
-    "composition check of the published weights: sum g = 1, sum g^3 = 0, observed local order 5 on Kepler"
+    &[
+        said(Order, "4th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:76"),
+        said(Symplectic, "4th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:76"),
+        said_and(
+            Symmetric,
+            "fn yoshida4_time_reversible(",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:443",
+            "the name of the crate's own test, under \"// --- Time-reversibility ---\" (yoshida.rs:415); not in its API docs",
+        ),
+        unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
+        said(Evaluations, "Cost: 6 force evaluations per step (3 Verlet substeps × 2).", "utsuroi-0.2.0/src/solver/yoshida.rs:77"),
+    ],
+    "composition check of the published weights: sum g = 1, sum g^3 = 0"
 );
 utsuroi_yoshida!(
     utsuroi_yoshida6,
@@ -128,7 +183,18 @@ utsuroi_yoshida!(
     6,
     14,
     7,
-    "doc solver/yoshida.rs:80-84: 6th order, symplectic, 7 Verlet substeps (palindromic)",
+    &[
+        said(Order, "6th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:83"),
+        said(Symplectic, "6th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:83"),
+        said_and(
+            Symmetric,
+            "fn yoshida6_time_reversible(",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:458",
+            "the name of the crate's own test, under \"// --- Time-reversibility ---\" (yoshida.rs:415); not in its API docs",
+        ),
+        unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
+        said(Evaluations, "Cost: 14 force evaluations per step.", "utsuroi-0.2.0/src/solver/yoshida.rs:84"),
+    ],
     "composition check of the published weights: order 6"
 );
 utsuroi_yoshida!(
@@ -138,8 +204,19 @@ utsuroi_yoshida!(
     8,
     30,
     15,
-    "doc solver/yoshida.rs:87-91: 8th order, symplectic, 15 Verlet substeps (palindromic)",
-    "composition check of the published weights: order 8 (local slope 8.8)"
+    &[
+        said(Order, "8th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:90"),
+        said(Symplectic, "8th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:90"),
+        said_and(
+            Symmetric,
+            "fn yoshida8_time_reversible(",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:473",
+            "the name of the crate's own test, under \"// --- Time-reversibility ---\" (yoshida.rs:415); not in its API docs",
+        ),
+        unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
+        said(Evaluations, "Cost: 30 force evaluations per step.", "utsuroi-0.2.0/src/solver/yoshida.rs:91"),
+    ],
+    "composition check of the published weights: order 8"
 );
 
 pub fn utsuroi_rk4() -> Audit {
@@ -147,9 +224,22 @@ pub fn utsuroi_rk4() -> Audit {
         Provenance {
             krate: "utsuroi 0.2.0",
             method: "Rk4",
-            claims_from: "doc solver/rk4.rs:3: \"Classic 4th-order Runge-Kutta\" (neither symplectic nor symmetric)",
+            properties: const { &[
+                said(Order, "Classic 4th-order Runge-Kutta integrator.", "utsuroi-0.2.0/src/solver/rk4.rs:3"),
+                RK_NOT_GEOMETRIC[0],
+                said_and(
+                    Symmetric,
+                    "RK4 is NOT time-reversible: forward+backward does NOT recover initial state.",
+                    "utsuroi-0.2.0/src/comparison.rs:19",
+                    "a claim that it is not (tested: no), on the crate's own test",
+                ),
+                RK_NOT_GEOMETRIC[2],
+                unsaid(
+                    Evaluations,
+                    "not claimed as a count; tested: 4, the stages k1..k4 the doc writes out (rk4.rs:9-13)",
+                ),
+            ] },
             minimum_evaluations: 4,
-            evaluations_claim: "true count (4 stages)",
             test: "utsuroi_rk4",
         },
         &BlackBox::new(
@@ -167,9 +257,17 @@ pub fn utsuroi_dormand_prince() -> Audit {
         Provenance {
             krate: "utsuroi 0.2.0",
             method: "DormandPrince (stepper)",
-            claims_from: "doc solver/dp45/mod.rs:13-17: Dormand-Prince RK5(4)7M, the 5th-order solution propagated",
+            properties: const { &[
+                said(Order, "The 5th-order solution is propagated (local extrapolation)", "utsuroi-0.2.0/src/solver/dp45/mod.rs:15-16"),
+                said(Estimate, "the 4th-order solution is used only for error estimation.", "utsuroi-0.2.0/src/solver/dp45/mod.rs:16-17"),
+                said_and(
+                    Evaluations,
+                    "The FSAL (First Same As Last) property allows reuse of the 7th stage derivative as the 1st stage of the next step.",
+                    "utsuroi-0.2.0/src/solver/dp45/mod.rs:17-18",
+                    "7 stages less the reused one: 6 per step; shown per accepted step, not judged (the stepper reports no count)",
+                ),
+            ] },
             minimum_evaluations: 6,
-            evaluations_claim: "not judged (the stepper reports no count); shown per accepted step",
             test: "utsuroi_dormand_prince",
         },
         &AdaptiveBlackBox::new(
@@ -180,7 +278,7 @@ pub fn utsuroi_dormand_prince() -> Audit {
         AdaptiveExpectation {
             verdict: Pass,
             first_order_estimate: false,
-            why: "Butcher-tree check: b order 5, b - e order 4; probe: error follows TOL on Kepler e = 0.5",
+            why: "Butcher-tree check: b order 5, b - e order 4",
             evidence: &[],
         },
     ))
@@ -193,9 +291,24 @@ pub fn de_velocity_verlet() -> Audit {
         Provenance {
             krate: "differential-equations 0.7.0",
             method: "SymplecticIntegrator::velocity_verlet",
-            claims_from: "doc methods/symplectic/velocity_verlet.rs:16-26: \"2nd Order Symplectic\", partitioned coefficients c = (0, 1), d = (1/2, 1/2) (palindromic)",
+            properties: const { &[
+                said(Order, "Velocity Verlet (2nd Order Symplectic Integrator).", "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:16"),
+                said(Symplectic, "Velocity Verlet (2nd Order Symplectic Integrator).", "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:16"),
+                unsaid(
+                    Symmetric,
+                    "not claimed; tested: yes, as the documented table c = (0, 1), d = (1/2, 1/2) (velocity_verlet.rs:21-23) is palindromic",
+                ),
+                said(
+                    Energy,
+                    "Ideal for conservative physics and orbital mechanics where energy conservation over long periods is required.",
+                    "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:18-19",
+                ),
+                unsaid(
+                    Evaluations,
+                    "not claimed (the crate's own counter, `evals.function += 1` after each `ode.diff`, reports what it spends); tested: 2, the two kicks d1, d2 of the documented table; 1 if the last force were kept for the next step",
+                ),
+            ] },
             minimum_evaluations: 1,
-            evaluations_claim: "documented: the coefficient table has two kicks d1, d2, i.e. two force evaluations",
             test: "de_velocity_verlet",
         },
         &BlackBox::new(
@@ -214,10 +327,11 @@ pub fn de_velocity_verlet() -> Audit {
         ),
         except(
             [Pass, Pass, Pass, Pass, Fail],
-            "order 2 and symplectic on autonomous scenes (probe: order 2.00 on the free oscillator); three full right-hand-side calls per step where the documented two kicks need two",
-            &[
-                "evaluations: source velocity_verlet.rs step() makes three `ode.diff` calls per step (l.110, 124, 135 of the published file), none in init; standalone probe counted 3.00 calls per step",
-            ],
+            "velocity Verlet as its table says on autonomous scenes; three full right-hand-side calls per step where the table's two kicks need two",
+            &[(
+                &[Evaluations],
+                "source: step() calls `ode.diff` three times (velocity_verlet.rs:110, 124, 135), the one at l.124 only to read the velocity for the drift, and none in init; each call is followed by `evals.function += 1`, so the crate's own count is 3 too",
+            )],
         ),
     ))
 }
@@ -227,9 +341,24 @@ pub fn de_ruth_forest() -> Audit {
         Provenance {
             krate: "differential-equations 0.7.0",
             method: "SymplecticIntegrator::ruth_forest",
-            claims_from: "doc methods/symplectic/ruth_forest.rs:16-22: \"4th Order Symplectic\" (Forest-Ruth, palindromic)",
+            properties: const { &[
+                said(Order, "Ruth-Forest (4th Order Symplectic Integrator).", "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:16"),
+                said(Symplectic, "Ruth-Forest (4th Order Symplectic Integrator).", "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:16"),
+                unsaid(
+                    Symmetric,
+                    "not claimed; tested: yes, as the Forest-Ruth composition is palindromic",
+                ),
+                said(
+                    Energy,
+                    "Ideal for conservative physics and orbital mechanics where energy conservation over long periods is required.",
+                    "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:18-19",
+                ),
+                unsaid(
+                    Evaluations,
+                    "not claimed (the crate's own counter reports what it spends); tested: 3, the nonzero kicks of its table d = (theta, 1 - 2 theta, theta, 0) (ruth_forest.rs:36)",
+                ),
+            ] },
             minimum_evaluations: 3,
-            evaluations_claim: "true count (the doc gives none): 8 full right-hand-side calls, where Forest-Ruth needs 3 kicks (d4 = 0)",
             test: "de_ruth_forest",
         },
         &BlackBox::new(
@@ -238,7 +367,7 @@ pub fn de_ruth_forest() -> Audit {
                 4,
                 true,
                 true,
-                8,
+                3,
                 false,
                 "differential-equations 0.7.0",
             ),
@@ -246,7 +375,14 @@ pub fn de_ruth_forest() -> Audit {
                 glue::de_fresh_step(SymplecticIntegrator::ruth_forest, q, v, h, f)
             },
         ),
-        holds("probe: order 4.00 on the free oscillator; Forest-Ruth weights are palindromic"),
+        except(
+            [Pass, Pass, Pass, Pass, Fail],
+            "Forest-Ruth as its table says on autonomous scenes; eight full right-hand-side calls per step where the table's three kicks need three",
+            &[(
+                &[Evaluations],
+                "source: step() runs 4 passes, each calling `ode.diff` before the drift and again before the kick (ruth_forest.rs:108-121), 8 calls, the last kick (d4 = 0) included; each call is counted by `evals.function += 1`, so the crate's own count is 8 too",
+            )],
+        ),
     ))
 }
 
@@ -255,9 +391,14 @@ pub fn de_rk4() -> Audit {
         Provenance {
             krate: "differential-equations 0.7.0",
             method: "ExplicitRungeKutta::rk4",
-            claims_from: "doc methods/erk/fixed/mod.rs:74: \"the classical 4th order Runge-Kutta method\"",
+            properties: const { &[
+                said(Order, "Creates the classical 4th order Runge-Kutta method.", "differential-equations-0.7.0/src/methods/erk/fixed/mod.rs:74"),
+                RK_NOT_GEOMETRIC[0],
+                RK_NOT_GEOMETRIC[1],
+                RK_NOT_GEOMETRIC[2],
+                said(Evaluations, "- Number of stages: 4", "differential-equations-0.7.0/src/tableau/runge_kutta.rs:14"),
+            ] },
             minimum_evaluations: 4,
-            evaluations_claim: "true count (4 stages)",
             test: "de_rk4",
         },
         &BlackBox::stateful(
@@ -288,9 +429,17 @@ pub fn de_dopri5() -> Audit {
         Provenance {
             krate: "differential-equations 0.7.0",
             method: "ExplicitRungeKutta::dopri5",
-            claims_from: "doc methods/erk/dormandprince/mod.rs:57: \"the DOPRI5 method (5th order, 7 stages)\", embedded 4th-order estimate",
+            properties: const { &[
+                said(Order, "Creates the DOPRI5 method (5th order, 7 stages).", "differential-equations-0.7.0/src/methods/erk/dormandprince/mod.rs:57"),
+                said(Estimate, "- Embedded order: 4 (for error estimation)", "differential-equations-0.7.0/src/tableau/dorman_prince.rs:11"),
+                said_and(
+                    Evaluations,
+                    "Creates the DOPRI5 method (5th order, 7 stages).",
+                    "differential-equations-0.7.0/src/methods/erk/dormandprince/mod.rs:57",
+                    "7 stages; shown per accepted step from the crate's own count (Solution.evals.function), checked against the calls, not judged",
+                ),
+            ] },
             minimum_evaluations: 6,
-            evaluations_claim: "the crate's own count (Solution.evals.function), checked against the calls",
             test: "de_dopri5",
         },
         &AdaptiveBlackBox::new("de-dopri5", AdaptiveClaims::pair(5, 4), glue::de_dopri5),
@@ -310,9 +459,17 @@ pub fn os_rk4() -> Audit {
         Provenance {
             krate: "ode_solvers 0.6.2",
             method: "Rk4",
-            claims_from: "doc rk4.rs:1: \"Explicit Runge-Kutta method of order 4 with fixed step size\"",
+            properties: const { &[
+                said(Order, "Explicit Runge-Kutta method of order 4 with fixed step size.", "ode_solvers-0.6.2/src/rk4.rs:1"),
+                RK_NOT_GEOMETRIC[0],
+                RK_NOT_GEOMETRIC[1],
+                RK_NOT_GEOMETRIC[2],
+                unsaid(
+                    Evaluations,
+                    "not claimed in the docs (its counter adds 4 a step, rk4.rs:92); tested: 4, the stages of the classical method",
+                ),
+            ] },
             minimum_evaluations: 4,
-            evaluations_claim: "true count (4 stages, rk4.rs:88 counts +4 per step)",
             test: "os_rk4",
         },
         &BlackBox::new(
@@ -336,9 +493,15 @@ pub fn os_dopri5() -> Audit {
         Provenance {
             krate: "ode_solvers 0.6.2",
             method: "Dopri5",
-            claims_from: "doc dopri5.rs:1: Dormand-Prince coefficients of order 5(4)",
+            properties: const { &[
+                said(Order, "Explicit Runge-Kutta method with Dormand-Prince coefficients of order 5(4) and dense output of order 4.", "ode_solvers-0.6.2/src/dopri5.rs:1"),
+                said(Estimate, "| Dormand-Prince | Dopri5 | 5     | 4                    | 4                  |", "ode_solvers-0.6.2/README.md:73"),
+                unsaid(
+                    Evaluations,
+                    "not claimed; shown per accepted step from the crate's own count (Stats.num_eval), checked against the calls, not judged",
+                ),
+            ] },
             minimum_evaluations: 6,
-            evaluations_claim: "the crate's own count (Stats.num_eval), checked against the calls",
             test: "os_dopri5",
         },
         &AdaptiveBlackBox::new(
@@ -356,7 +519,7 @@ pub fn os_dopri5() -> Audit {
         AdaptiveExpectation {
             verdict: Pass,
             first_order_estimate: false,
-            why: "Butcher-tree check: b order 5, b - e order 4, rows consistent; probe: order 5.00 at fixed h",
+            why: "Butcher-tree check: b order 5, b - e order 4, rows consistent",
             evidence: &[],
         },
     ))
@@ -367,9 +530,15 @@ pub fn os_dop853() -> Audit {
         Provenance {
             krate: "ode_solvers 0.6.2",
             method: "Dop853",
-            claims_from: "doc dop853.rs:1: Dormand-Prince coefficients of order 8(5,3)",
+            properties: const { &[
+                said(Order, "Explicit Runge-Kutta method with Dormand-Prince coefficients of order 8(5,3) and dense output of order 7.", "ode_solvers-0.6.2/src/dop853.rs:1"),
+                said(Estimate, "| Dormand-Prince | Dop853 | 8     | (5, 3)               | 7                  |", "ode_solvers-0.6.2/README.md:74"),
+                unsaid(
+                    Evaluations,
+                    "not claimed; shown per accepted step from the crate's own count (Stats.num_eval), checked against the calls, not judged",
+                ),
+            ] },
             minimum_evaluations: 12,
-            evaluations_claim: "the crate's own count (Stats.num_eval), checked against the calls",
             test: "os_dop853",
         },
         // Hairer's estimate blends the 5th- and 3rd-order differences as
@@ -408,15 +577,14 @@ pub fn os_dop853() -> Audit {
 // ---------------------------------------------------------------- peroxide
 
 macro_rules! peroxide_fixed {
-    ($fn:ident, $value:expr, $name:literal, $id:literal, $order:literal, $evals:literal, $doc:literal, $expected:expr) => {
+    ($fn:ident, $value:expr, $name:literal, $id:literal, $order:literal, $evals:literal, $props:expr, $expected:expr) => {
         pub fn $fn() -> Audit {
             Audit::Fixed(audit_fixed(
                 Provenance {
                     krate: "peroxide 0.43.1",
                     method: $name,
-                    claims_from: $doc,
+                    properties: const { $props },
                     minimum_evaluations: $evals,
-                    evaluations_claim: "true count (one call per tableau stage)",
                     test: stringify!($fn),
                 },
                 &BlackBox::new(
@@ -438,7 +606,13 @@ peroxide_fixed!(
     "peroxide-rk4",
     4,
     4,
-    "doc numerical/ode.rs:393-395: \"Runge-Kutta 4th order integrator\", the classical method",
+    &[
+        said(Order, "This integrator uses the classical 4th order Runge-Kutta method to numerically integrate the ODE system.", "peroxide-0.43.1/src/numerical/ode.rs:395"),
+        RK_NOT_GEOMETRIC[0],
+        RK_NOT_GEOMETRIC[1],
+        RK_NOT_GEOMETRIC[2],
+        said(Evaluations, "It calculates four intermediate values (k1, k2, k3, k4) to estimate the next step solution.", "peroxide-0.43.1/src/numerical/ode.rs:396"),
+    ],
     holds("Butcher-tree check of the public consts C, A, BU: order 4")
 );
 peroxide_fixed!(
@@ -448,7 +622,13 @@ peroxide_fixed!(
     "peroxide-rals3",
     3,
     3,
-    "doc numerical/ode.rs:374: \"Ralston's 3rd order integrator\"",
+    &[
+        said(Order, "Ralston's 3rd order integrator", "peroxide-0.43.1/src/numerical/ode.rs:374"),
+        RK_NOT_GEOMETRIC[0],
+        RK_NOT_GEOMETRIC[1],
+        RK_NOT_GEOMETRIC[2],
+        unsaid(Evaluations, "not claimed; tested: 3, the stages of its tableau (C, A, BU at ode.rs:387-389)"),
+    ],
     holds("Butcher-tree check of the public consts: order 3")
 );
 peroxide_fixed!(
@@ -458,13 +638,20 @@ peroxide_fixed!(
     "peroxide-rals4",
     4,
     4,
-    "doc numerical/ode.rs:412-414: \"Ralston's 4th order integrator ... minimum truncation error RK4\"",
+    &[
+        said(Order, "This fourth order method is known as minimum truncation error RK4.", "peroxide-0.43.1/src/numerical/ode.rs:414"),
+        RK_NOT_GEOMETRIC[0],
+        RK_NOT_GEOMETRIC[1],
+        RK_NOT_GEOMETRIC[2],
+        unsaid(Evaluations, "not claimed; tested: 4, the stages of its tableau (ode.rs:424-431)"),
+    ],
     except(
         [Fail, Pass, Pass, Pass, Pass],
         "two digit typos in A make the rows inconsistent: first order",
-        &[
-            "order: published a32 = 0.158575964 and a42 = -3.050965616 (ode.rs:428-429) leave c3 - (a31 + a32) = 1.84e-4 and 1 - (a41 + a42 + a43) = 4.6e-7; Butcher-tree check: order 1 (order-2 residual 1.5e-4); probe: oscillator error halves with h from h = 0.1 to 7.8e-4",
-        ]
+        &[(
+            &[Order],
+            "published a32 = 0.158575964 and a42 = -3.050965616 (ode.rs:428-429) leave c3 - (a31 + a32) = 1.84e-4 and 1 - (a41 + a42 + a43) = 4.6e-7; with c the row sums of A (what an autonomous problem sees) the order-2 condition sum b c = 1/2 fails by -2.2e-4 (by -4.9e-9 with the published C): order 1; the crate's RALS4 on q'' = -q, (q, v)(0) = (1, 0), to T = 1, halves its error with each halving of h from h = 1/16 to 1/1024 (reproduce both: `cargo test --release --test independent peroxide_rals4 -- --nocapture`)",
+        )]
     )
 );
 peroxide_fixed!(
@@ -474,13 +661,20 @@ peroxide_fixed!(
     "peroxide-rk5",
     5,
     7,
-    "doc numerical/ode.rs:435: \"Runge-Kutta 5th order integrator\"",
+    &[
+        said(Order, "This integrator uses the 5th order Runge-Kutta method to numerically integrate the ODE system.", "peroxide-0.43.1/src/numerical/ode.rs:437"),
+        RK_NOT_GEOMETRIC[0],
+        RK_NOT_GEOMETRIC[1],
+        RK_NOT_GEOMETRIC[2],
+        unsaid(Evaluations, "not claimed; tested: 7, the stages of its tableau (ode.rs:447-484)"),
+    ],
     except(
         [Fail, Pass, Pass, Pass, Pass],
         "Dormand-Prince's A with its 4th-order weights: order 4",
-        &[
-            "order: BU (ode.rs:475-483) = (5179/57600, 0, 7571/16695, 393/640, -92097/339200, 187/2100, 1/40), Dormand-Prince's embedded 4th-order weights; Butcher-tree check: order 4; probe: observed order 4.00",
-        ]
+        &[(
+            &[Order],
+            "BU (ode.rs:475-483) = (5179/57600, 0, 7571/16695, 393/640, -92097/339200, 187/2100, 1/40), Dormand-Prince's embedded 4th-order weights: the order-5 condition sum b c^4 = 1/5 fails by -2.6e-4 while those of order 1 to 4 for the bushy trees hold to round-off (reproduce: `cargo test --release --test independent peroxide_rk5 -- --nocapture`)",
+        )]
     )
 );
 
@@ -495,9 +689,14 @@ pub fn peroxide_gl4_fixed_point() -> Audit {
         Provenance {
             krate: "peroxide 0.43.1",
             method: "GL4 (ImplicitSolver::FixedPoint, the default)",
-            claims_from: "doc numerical/ode.rs:1200: \"Gauss-Legendre 4th order integrator\" (Gauss collocation: symplectic and symmetric as a method)",
+            properties: const { &[
+                said(Order, "Gauss-Legendre 4th order integrator.", "peroxide-0.43.1/src/numerical/ode.rs:1200"),
+                GL4_NOT_CLAIMED[0],
+                GL4_NOT_CLAIMED[1],
+                GL4_NOT_CLAIMED[2],
+                GL4_NOT_CLAIMED[3],
+            ] },
             minimum_evaluations: 2,
-            evaluations_claim: "implicit: shown, not judged (its iterations are its own); 2 = stages",
             test: "peroxide_gl4_fixed_point",
         },
         &BlackBox::new(
@@ -526,8 +725,14 @@ pub fn peroxide_gl4_fixed_point() -> Audit {
             [Fail, Fail, Fail, Fail, Inconclusive],
             "stage 2 is formed with row 1 of A: a one-stage theta-method with theta = c1 = 0.211, first order, neither symplectic nor symmetric",
             &[
-                "order: ode.rs:1269-1270 forms y2 = y + dt (A11 k1 + A12 k2) (row 1 again; the Broyden residual at ode.rs:1406-1407 uses A21, A22); probe at tol 1e-14: oscillator error 2.9e-2, 1.45e-2, 7.2e-3 (order 1.00)",
-                "symplectic, reversible, energy: both stages then share y + c1 h k, i.e. the theta-method with theta = 0.211, whose map on the oscillator has determinant != 1 and is not its own adjoint (theta != 1/2)",
+                (
+                    &[Order],
+                    "ode.rs:1269-1270 forms y2 = y + dt (A11 k1 + A12 k2) (row 1 again; the Broyden residual at ode.rs:1406-1407 uses A21, A22); the crate's step on q'' = -q, (q, v)(0) = (1, 0), to T = 1, at iteration tolerance 1e-14, halves its error with each halving of h from h = 1/16 to 1/256 (reproduce: `cargo test --release --test independent peroxide_gl4_fixed_point -- --nocapture`)",
+                ),
+                (
+                    &[Symplectic, Symmetric, Energy],
+                    "both stages then share y + c1 h k: the theta-method with theta = c1 = 1/2 - sqrt(3)/6 = 0.211, whose map on q'' = -q has determinant (1 + (1 - theta)^2 h^2) / (1 + theta^2 h^2), not 1, and is not its own adjoint (theta != 1/2); the crate's one-step map has that determinant, 1.005771 at h = 0.1 (same test)",
+                ),
             ],
         ),
     ))
@@ -538,9 +743,14 @@ pub fn peroxide_gl4_broyden() -> Audit {
         Provenance {
             krate: "peroxide 0.43.1",
             method: "GL4 (ImplicitSolver::Broyden)",
-            claims_from: "doc numerical/ode.rs:1200: \"Gauss-Legendre 4th order integrator\" (Gauss collocation: symplectic and symmetric as a method)",
+            properties: const { &[
+                said(Order, "Gauss-Legendre 4th order integrator.", "peroxide-0.43.1/src/numerical/ode.rs:1200"),
+                GL4_NOT_CLAIMED[0],
+                GL4_NOT_CLAIMED[1],
+                GL4_NOT_CLAIMED[2],
+                GL4_NOT_CLAIMED[3],
+            ] },
             minimum_evaluations: 2,
-            evaluations_claim: "implicit: shown, not judged; 2 = stages",
             test: "peroxide_gl4_broyden",
         },
         &BlackBox::new(
@@ -571,9 +781,10 @@ pub fn peroxide_gl4_broyden() -> Audit {
             harmonic: [Fail, Fail, Fail, Fail, Inconclusive],
             kepler: [Pass, Fail, Fail, Pass, Inconclusive],
             why: "the Broyden iteration stops on an absolute test |delta . J_inv dF| < 1e-12 (ode.rs:1325), a quantity ~ |delta|^2, i.e. while the update is still ~1e-6 and the residual far above the requested 1e-14: the step is Gauss-Legendre only to ~1e-10 (the residual uses the full A, ode.rs:1406-1407, so the method itself is right); an implicit black box's count is shown, not judged",
-            evidence: &[
-                "order, energy (oscillator), symplectic, reversible: compared step by step with the exact GL4 map of the oscillator (the rational function R(z) = (1 + z/2 + z^2/12)/(1 - z/2 + z^2/12)), the crate's step departs by up to 1.5e-10 at h = 1/16 and irregularly (9.7e-12 at 1/64, 3.8e-14 at 1/1024) as the force calls per step fall from 11 to 7 (fewer iterations); its error at T = 1 is 6.5x GL4's at h = 1/64 and 300x at h = 1/1024 (test `peroxide_gl4_broyden_is_not_gauss_legendre`)",
-            ],
+            evidence: &[(
+                &[Order, Symplectic, Symmetric, Energy],
+                "compared step by step with the exact GL4 map of q'' = -q (the (2,2) Pade approximant R(z) = (1 + z/2 + z^2/12)/(1 - z/2 + z^2/12)), from (q, v) = (1, 0) to T = 1 at iteration tolerance 1e-14, the crate's step departs from it by up to 1.5e-10 at h = 1/16, 9.7e-12 at 1/64, 5.0e-16 at 1/512 and 3.8e-14 at 1/1024, irregularly, as the calls per step fall from 11 to 9 to 7 (fewer iterations); its error at T = 1 is 6.5x GL4's at h = 1/64; at h = 1/1024 it is 3.9e-11, 317x the GL4 map iterated in doubles (1.2e-13, round-off: GL4's own truncation error there, h^4 T / 720 in phase, is 1.26e-15) and 3.1e4x that truncation error (reproduce: `cargo test --release --test independent peroxide_gl4_broyden -- --nocapture`)",
+            )],
         },
     ))
 }
@@ -587,9 +798,12 @@ pub fn peroxide_dp45() -> Audit {
         Provenance {
             krate: "peroxide 0.43.1",
             method: "DP45",
-            claims_from: "doc numerical/ode.rs:683: \"Dormand-Prince 5(4) method\"",
+            properties: const { &[
+                said(Order, "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation.", "peroxide-0.43.1/src/numerical/ode.rs:685-686"),
+                said(Estimate, "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation.", "peroxide-0.43.1/src/numerical/ode.rs:685-686"),
+                unsaid(Evaluations, "not claimed, not reported by the crate; shown per accepted step (7: no first-same-as-last reuse), not judged"),
+            ] },
             minimum_evaluations: 6,
-            evaluations_claim: "not reported by the crate; shown per accepted step (7: no first-same-as-last reuse)",
             test: "peroxide_dp45",
         },
         &AdaptiveBlackBox::new(
@@ -618,9 +832,12 @@ pub fn peroxide_tsit45() -> Audit {
         Provenance {
             krate: "peroxide 0.43.1",
             method: "TSIT45",
-            claims_from: "doc numerical/ode.rs:804-807: \"Tsitouras 5(4) method\", 4th-order embedded error estimation",
+            properties: const { &[
+                said(Order, "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation, using the coefficients from Tsitouras (2011).", "peroxide-0.43.1/src/numerical/ode.rs:806-807"),
+                said(Estimate, "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation, using the coefficients from Tsitouras (2011).", "peroxide-0.43.1/src/numerical/ode.rs:806-807"),
+                unsaid(Evaluations, "not claimed, not reported by the crate; shown per accepted step, not judged"),
+            ] },
             minimum_evaluations: 6,
-            evaluations_claim: "not reported by the crate; shown per accepted step",
             test: "peroxide_tsit45",
         },
         &AdaptiveBlackBox::new(
@@ -651,9 +868,10 @@ pub fn peroxide_tsit45() -> Audit {
             verdict: Inconclusive,
             first_order_estimate: true,
             why: "the error weights BU - BE sum to 0.97, not 0: the estimate is ~0.97 h |f|, O(h), so steps grow like 1/TOL",
-            evidence: &[
-                "estimate: BE (ode.rs:909-917) is minus Tsitouras' b - b_hat in six entries and the same sign in the last; sum BE = 0.0303, so sum (BU - BE) = 0.9697; Butcher-tree check: estimator order 0; probe: 148 277 / 14 827 833 steps at TOL 1e-4 / 1e-6 on the oscillator to T = 10 (DP45: 18 / 43)",
-            ],
+            evidence: &[(
+                &[Estimate],
+                "BE (ode.rs:909-917) is minus Tsitouras' b - b_hat in six entries and the same sign in the last; sum BU = 1 and sum BE = 0.0303, so the error weights BU - BE sum to 0.9697 where an estimate of any order needs 0: it is ~ 0.97 h f, first order in h (reproduce: `cargo test --release --test independent peroxide_tsit45 -- --nocapture`); the steps' growth with 1/TOL is in the table (s)",
+            )],
         },
     ))
 }
@@ -665,9 +883,17 @@ pub fn russell_rk4() -> Audit {
         Provenance {
             krate: "russell_ode 5.0.0",
             method: "Method::Rk4 (h_equal)",
-            claims_from: "Method::information(), enums.rs:139: order 4, not embedded",
+            properties: const { &[
+                said(Order, "\"The\" Runge-Kutta method (explicit, order 4)", "russell_ode-5.0.0/src/enums.rs:82"),
+                RK_NOT_GEOMETRIC[0],
+                RK_NOT_GEOMETRIC[1],
+                RK_NOT_GEOMETRIC[2],
+                unsaid(
+                    Evaluations,
+                    "not claimed; tested: 4, the stages of the classical method its doc cites (HNW I p. 138, enums.rs:84); the crate's own step is counted in `cargo test --release --test independent russell_equal_steps`",
+                ),
+            ] },
             minimum_evaluations: 4,
-            evaluations_claim: "true count (4 stages; probe: 200 calls for 50 equal steps)",
             test: "russell_rk4",
         },
         &BlackBox::new(
@@ -691,9 +917,17 @@ pub fn russell_dopri5() -> Audit {
         Provenance {
             krate: "russell_ode 5.0.0",
             method: "Method::DoPri5",
-            claims_from: "Method::information(), enums.rs:145: order 5, estimator order 4, first same as last",
+            properties: const { &[
+                said(Order, "Dormand-Prince method (explicit, order 5(4), embedded)", "russell_ode-5.0.0/src/enums.rs:113"),
+                said(Estimate, "For DoPri5(4): q = 4 = min(order(y1), order(y1bar))", "russell_ode-5.0.0/src/enums.rs:9"),
+                said_and(
+                    Evaluations,
+                    "Method::DoPri5     => Information { order: 5, order_of_estimator: 4, implicit: false, embedded: true,  multiple_stages: true,  first_step_same_as_last: true  },",
+                    "russell_ode-5.0.0/src/enums.rs:145",
+                    "first same as last: 6 per step; shown per accepted step from the crate's own count (Stats.n_function), checked against the calls, not judged",
+                ),
+            ] },
             minimum_evaluations: 6,
-            evaluations_claim: "the crate's own count (Stats.n_function), checked against the calls",
             test: "russell_dopri5",
         },
         &AdaptiveBlackBox::new(
@@ -704,7 +938,7 @@ pub fn russell_dopri5() -> Audit {
         AdaptiveExpectation {
             verdict: Pass,
             first_order_estimate: false,
-            why: "Butcher-tree check of the parsed tableau: 5(4); probe: 6 calls per equal step + 1",
+            why: "Butcher-tree check of the parsed tableau: 5(4)",
             evidence: &[],
         },
     ))

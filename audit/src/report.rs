@@ -1,17 +1,25 @@
 //! AUDIT.md: a table per crate, the refuted claims with their independent
-//! evidence, and the defects autonomous scenes cannot show.
+//! evidence, the findings on properties the crates do not claim, the
+//! defects autonomous scenes cannot show, and where each claim was read.
 
-use crate::{Audit, disagreements};
+use crate::{Audit, FIXED_PROPS, Prop, Provenance, disagreements};
 use std::fmt::Write;
 use stepladder::study::Verdict;
 
 /// Defects the audit's autonomous scenes cannot see, with the independent
 /// confirmation that found them.
 pub const NOT_VISIBLE: &[&str] = &[
-    "ode_solvers 0.6.2 Dop853: stage 12 is evaluated at t instead of t + h (c12 = 0 in butcher_tableau.rs:266-283; its row of A sums to 1). Not visible on autonomous scenes, confirmed independently by the Butcher-tree check (row-sum defect 1.0 at stage 12, every other DOP853 copy 1.8e-15) and by a probe on y' = cos t (fixed-step order 1.00; adaptive run gives up as stiff at x = 0.17).",
-    "differential-equations 0.7.0 velocity_verlet and ruth_forest: every stage is evaluated at the step's start time (velocity_verlet.rs:110,124,135; ruth_forest.rs:110,120). Not visible on autonomous scenes, confirmed independently by a probe on the forced oscillator q'' = -q + cos 2t (order 1.00 for both, 2.00 and 4.00 on the free oscillator).",
-    "russell_ode 5.0.0 equal steps: `solve` with `h_equal` recomputes the step count after rounding and adds no clamp at x1 (ode_solver.rs:203-204, 240), so a run can take one step too many and end past x1. Not visible through a per-step adapter (each call is one step over [0, h]); confirmed independently by replaying the arithmetic in doubles (1414 of 28000 span/N pairs give a step count other than N, 191 overshoot by a whole step, e.g. span 1 with N = 196) and by a probe carrying time in the state (h_equal = 1/196: 198 steps, integrated time 1.005076).",
-    "peroxide 0.43.1 BasicODESolver advances its clock by the requested dt, not the step taken after internal rejections (ode.rs:240-244): the audit drives `ODEIntegrator::step` itself instead. Confirmed independently by a probe carrying time in the state (reported t = 3.0258, integrated time 2.0604).",
+    "ode_solvers 0.6.2 Dop853: stage 12 is evaluated at t instead of t + h: its c12 is 0.0 (butcher_tableau.rs:278, in the C table at l.266-283) where Hairer's DOP853 has c12 = 1. Not visible on autonomous scenes, whose forces ignore t; read from the published source.",
+    "differential-equations 0.7.0 velocity_verlet and ruth_forest: every force is evaluated at the step's start time `self.t` (velocity_verlet.rs:110, 124, 135; ruth_forest.rs:110, 120), so a time-dependent force is frozen over each step. Not visible on autonomous scenes; read from the published source.",
+    "russell_ode 5.0.0 equal steps: `solve` with `h_equal` rounds the step count up, n = ceil(span / h_equal), h = span / n (ode_solver.rs:203-204), then takes ceil(span / h) steps with no clamp at x1 (ode_solver.rs:240), so a run can take one step too many and end past x1. Not visible through a per-step adapter (each call is one step over [0, h]). Replaying that arithmetic in doubles over spans 1, 2, ..., 28 and N = 1 ... 1000 with h_equal = span / N, 1255 of the 28000 pairs take a number of steps other than N and 149 end a whole step past x1, the first with span 1 at N = 196; the crate itself, on y' = 1 over [0, 1] with h_equal = 1/196 and `Method::Rk4`, takes 198 steps of 1/197 (792 right-hand-side calls, 4 a step) and integrates time 1.005076 (reproduce: `cargo test --release --test independent russell_equal_steps -- --nocapture`).",
+    "peroxide 0.43.1 BasicODESolver advances its clock by the requested dt, not by the step the integrator took after internal rejections (`t += dt` after `let dt_step = self.integrator.step(...)`, ode.rs:241-242): the audit drives `ODEIntegrator::step` itself instead. Read from the published source.",
+];
+
+/// Where a check that calls the crate directly and the harness's studies
+/// say different things of the same method.
+pub const HARNESS_VS_INDEPENDENT: &[&str] = &[
+    "peroxide 0.43.1 GL4 (ImplicitSolver::Broyden) on the oscillator: the harness fits a single order with a narrow interval over its own ladder (its row above; the rungs and steps are in its reason, to t_end = 17.8); called directly on q'' = -q from (1, 0) to T = 1, the error follows no single power of h: its ratio per halving of h from 1/16 to 1/1024 is 16.0, 2.5, 16.0, 16.0, 16.2, then 0.0034, as the Broyden solve stops after fewer iterations (`cargo test --release --test independent peroxide_gl4_broyden -- --nocapture`). Both say the step is not Gauss-Legendre's to the tolerance asked; the fitted order describes the harness's ladder, not a property of the crate's step.",
+    "Elsewhere the direct checks agree with the harness: RALS4 and GL4 with the fixed-point solve halve their error with h (the harness: order 1 in their rows), RK5 fails only its fifth-order condition (the harness: order 4 on the oscillator), russell_ode's Rk4 spends 4 calls a step (the harness's count in its rows), and TSIT45's error weights sum to 0.97, not 0 (the harness: steps growing like 1/TOL, s in its rows).",
 ];
 
 fn verdict(v: Verdict) -> &'static str {
@@ -32,6 +40,15 @@ fn first_sentence(reason: &str) -> String {
     }
 }
 
+/// A study's reason about a property the crate does not claim: stepladder
+/// words the value it tests as "claimed", here it is the value tested.
+fn tested_wording(reason: &str) -> String {
+    reason
+        .replace("cost figures from the claim", "cost figures from the tested count")
+        .replace("though claimed", "though tested")
+        .replace(" claimed", " tested")
+}
+
 /// `s` of steps ~ TOL^-s, marked when it is a lower bound.
 fn step_exponent(row: &crate::AdaptiveRow) -> String {
     let bound = if row.step_exponent_is_bound {
@@ -50,6 +67,57 @@ fn opt(x: Option<f64>, digits: usize) -> String {
     x.map_or("-".into(), |x| format!("{x:.digits$}"))
 }
 
+/// A tested value, starred when the crate does not claim it.
+fn starred(p: &Provenance, prop: Prop, value: String) -> String {
+    if p.claims(prop) {
+        value
+    } else {
+        format!("{value}*")
+    }
+}
+
+/// The cell of one property on one scene: the verdict on a claim, or, for
+/// a property not claimed, what was measured, a miss of the tested value
+/// marked as a finding.
+fn cell(p: &Provenance, prop: Prop, v: Verdict, measured: &str) -> String {
+    if p.claims(prop) {
+        return verdict(v).to_string();
+    }
+    match v {
+        Verdict::Pass => format!("not claimed: {measured}"),
+        Verdict::Fail => format!("not claimed: **{measured}** (finding)"),
+        Verdict::Inconclusive => "not claimed: not judged".to_string(),
+    }
+}
+
+fn is_are(b: bool, word: &str) -> String {
+    if b { word.to_string() } else { format!("not {word}") }
+}
+
+/// The properties of a fixed-step method that failed their test, split
+/// into claims refuted and findings on properties not claimed.
+fn fixed_failures(f: &crate::FixedAudit) -> (Vec<usize>, Vec<usize>) {
+    let (mut refuted, mut findings) = (Vec::new(), Vec::new());
+    for (i, prop) in FIXED_PROPS.iter().enumerate() {
+        if f.rows.iter().any(|r| r.verdicts()[i] == Verdict::Fail) {
+            if f.provenance.claims(*prop) {
+                refuted.push(i);
+            } else {
+                findings.push(i);
+            }
+        }
+    }
+    (refuted, findings)
+}
+
+fn evidence_on(evidence: &[crate::Evidence], props: &[Prop]) -> Vec<&'static str> {
+    evidence
+        .iter()
+        .filter(|(about, _)| about.iter().any(|a| props.contains(a)))
+        .map(|(_, text)| *text)
+        .collect()
+}
+
 /// The whole AUDIT.md, for `audits` in the order of [`crate::methods::ALL`],
 /// with the wall time the run took.
 pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
@@ -57,13 +125,21 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
     let _ = writeln!(
         s,
         "# Audit of published Rust integrators\n\n\
-         Generated by `cargo run --release` in `audit/` ({seconds:.0} s of studies). Each method's claims come from its\n\
-         crate's documentation; each is measured through stepladder's public black-box adapters on two autonomous\n\
-         scenes, the harmonic oscillator and the eccentric Kepler orbit (e = 0.6). \"holds\" / \"**refuted**\" is\n\
-         stepladder's verdict on the claim; \"as expected\" compares it with the verdict written in\n\
-         `src/methods.rs` beside each method, whose reason comes from an independent check (coefficients read\n\
-         from the published source, a source line, or a standalone probe of the crate). Reproduce one method with\n\
-         `cargo test --release <test>`.\n\n\
+         Generated by `cargo run --release` in `audit/` ({seconds:.0} s of studies). For each method the audit\n\
+         tests its order, symplecticity, time symmetry, long-term energy and force evaluations per step (for\n\
+         adaptive pairs: the order advanced, the order of the error estimate, the evaluations). A property\n\
+         counts as claimed only where the crate states it: the sentence, quoted, with its file and line in the\n\
+         published crate, is listed under \"Where the claims were read\", and `cargo test --release --test\n\
+         independent citations` checks every quote against the published source. Where the crate states\n\
+         nothing, the tables say \"not claimed\" and mark the tested value with *: the studies then test the value\n\
+         the method it names has in theory, or the cost its own table needs, and a miss is a finding, not a\n\
+         refuted claim.\n\n\
+         Each method is measured through stepladder's public black-box adapters on two autonomous scenes, the\n\
+         harmonic oscillator and the eccentric Kepler orbit (e = 0.6). \"holds\" / \"**refuted**\" is stepladder's\n\
+         verdict on a claim; \"as expected\" compares every verdict with the one written in `src/methods.rs`\n\
+         beside each method, whose reason is a line of the published source or a check that calls the crate\n\
+         directly, without stepladder (`tests/independent.rs`). Reproduce one method's rows with\n\
+         `cargo test --release --test audit <test>`; every other figure names the command that reproduces it.\n\n\
          Made from sources with fingerprint `{fingerprint}` (this crate, its lock file, and the stepladder\n\
          library it builds); the repository's `cargo test --release` fails when they no longer match, until\n\
          this file is made again.\n"
@@ -86,38 +162,44 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
         if !fixed.is_empty() {
             let _ = writeln!(
                 s,
-                "Fixed step. Claims: order p, symplectic S, symmetric R, force evaluations per step E (minimum in brackets).\n\n\
-                 | method | claims p / S / R / E (min) | scene | order [95 %] | order | symplectic | reversible | energy | evaluations counted | evaluations | as expected | test |\n\
+                "Fixed step. Tested: order p, symplectic S, symmetric R, force evaluations per step E (minimum in\n\
+                 brackets); * marks a value the crate does not claim.\n\n\
+                 | method | tested p / S / R / E (min) | scene | order [95 %] | order | symplectic | reversible | energy | evaluations counted | evaluations | as expected | test |\n\
                  | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
             );
             for f in fixed {
                 let c = &f.claims;
+                let p = &f.provenance;
                 for row in &f.rows {
                     let agree = disagreements(&Audit::Fixed(f.clone()))
                         .iter()
                         .all(|d| !d.contains(&format!(" on {}:", row.scene)));
-                    let per_step = format!("{:.2}", row.per_step);
+                    let energy = row.energy_class.map_or("-", |c| c.name());
+                    let evaluations = match row.evaluations {
+                        Verdict::Fail => format!("{:.2} > {}", row.per_step, c.force_evaluations),
+                        _ => format!("{}", c.force_evaluations),
+                    };
                     let _ = writeln!(
                         s,
-                        "| {} | {} / {} / {} / {} ({}) | {} | {} [{}] | {} | {} | {} | {} | {} | {} | {} | `{}` |",
-                        f.provenance.method,
-                        c.order,
-                        yes(c.symplectic),
-                        yes(c.symmetric),
-                        c.force_evaluations,
-                        f.provenance.minimum_evaluations,
+                        "| {} | {} / {} / {} / {} ({}) | {} | {} [{}] | {} | {} | {} | {} | {:.2} | {} | {} | `{}` |",
+                        p.method,
+                        starred(p, Prop::Order, c.order.to_string()),
+                        starred(p, Prop::Symplectic, yes(c.symplectic).into()),
+                        starred(p, Prop::Symmetric, yes(c.symmetric).into()),
+                        starred(p, Prop::Evaluations, c.force_evaluations.to_string()),
+                        p.minimum_evaluations,
                         row.scene,
                         opt(row.measured_order, 2),
                         row.ci95
                             .map_or("-".into(), |[a, b]| format!("{a:.2}, {b:.2}")),
-                        verdict(row.order),
-                        verdict(row.symplectic),
-                        verdict(row.reversible),
-                        verdict(row.energy),
-                        per_step,
-                        verdict(row.evaluations),
+                        cell(p, Prop::Order, row.order, "-"),
+                        cell(p, Prop::Symplectic, row.symplectic, &is_are(row.symplectic_measured, "symplectic")),
+                        cell(p, Prop::Symmetric, row.reversible, &is_are(row.reversible_measured, "symmetric")),
+                        cell(p, Prop::Energy, row.energy, energy),
+                        row.per_step,
+                        cell(p, Prop::Evaluations, row.evaluations, &evaluations),
                         if agree { "yes" } else { "**NO**" },
-                        f.provenance.test,
+                        p.test,
                     );
                 }
             }
@@ -133,20 +215,22 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
         if !adaptive.is_empty() {
             let _ = writeln!(
                 s,
-                "Adaptive. Claims: order p of the solution advanced, estimate ~ h^m; the global error should follow\n\
+                "Adaptive. Tested: order p of the solution advanced, estimate ~ h^m; the global error should follow\n\
                  TOL^(p/m) (no single value for DOP853's blended estimate); accepted steps grow like TOL^(-1/m),\n\
-                 s below is that exponent between the two loosest tolerances reached (above 1/2: an estimate ~ h).\n\n\
+                 s below is that exponent between the two loosest tolerances reached (above 1/2: an estimate ~ h).\n\
+                 Evaluations per accepted step are shown, not judged (* : the crate gives no count).\n\n\
                  | method | claims p, m | scene | exponent [95 %] (theory) | runs unfinished | steps ~ TOL^-s | evaluations per accepted step (min) | tolerance ladder | as expected | test |\n\
                  | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
             );
             for a in adaptive {
+                let p = &a.provenance;
                 for row in &a.rows {
                     let _ = writeln!(
                         s,
                         "| {} | {}, {} | {} | {} [{}] ({}) | {} | {} | {} ({}) | {} | {} | `{}` |",
-                        a.provenance.method,
-                        a.claims.order,
-                        a.claims.estimate_power,
+                        p.method,
+                        starred(p, Prop::Order, a.claims.order.to_string()),
+                        starred(p, Prop::Estimate, a.claims.estimate_power.to_string()),
                         row.scene,
                         opt(row.exponent, 2),
                         row.ci95
@@ -154,8 +238,8 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
                         opt(row.theory, 2),
                         row.unfinished,
                         step_exponent(row),
-                        opt(row.evaluations_per_accepted, 2),
-                        a.provenance.minimum_evaluations,
+                        starred(p, Prop::Evaluations, opt(row.evaluations_per_accepted, 2)),
+                        p.minimum_evaluations,
                         verdict(row.verdict),
                         if disagreements(&Audit::Adaptive(a.clone()))
                             .iter()
@@ -165,7 +249,7 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
                         } else {
                             "**NO**"
                         },
-                        a.provenance.test,
+                        p.test,
                     );
                 }
             }
@@ -174,47 +258,36 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
     }
     let _ = writeln!(s, "## Refuted claims and their independent confirmation\n");
     for a in audits {
-        let (evidence, refuted) = match a {
-            Audit::Fixed(f) => (
-                f.expected.evidence,
-                f.rows.iter().any(|r| r.verdicts().contains(&Verdict::Fail)),
-            ),
-            Audit::Adaptive(x) => (
-                x.expected.evidence,
-                x.rows.iter().any(|r| {
-                    r.verdict == Verdict::Fail
-                        || r.step_exponent
-                            .is_some_and(|s| s > crate::FIRST_ORDER_GROWTH)
-                }),
-            ),
-        };
-        if !refuted {
-            continue;
-        }
         let p = a.provenance();
-        let _ = writeln!(
-            s,
-            "- {} {} (reproduce: `cargo test --release {}`)",
-            p.krate, p.method, p.test
-        );
-        for e in evidence {
-            let _ = writeln!(s, "  - {e}");
-        }
-        if evidence.is_empty() {
-            let _ = writeln!(
-                s,
-                "  - no independent evidence on file: see the disagreements below"
-            );
-        }
         match a {
             Audit::Fixed(f) => {
+                let (refuted, _) = fixed_failures(f);
+                if refuted.is_empty() {
+                    continue;
+                }
+                let props: Vec<Prop> = refuted.iter().map(|&i| FIXED_PROPS[i]).collect();
+                let names: Vec<&str> = props.iter().map(|p| p.name()).collect();
+                let _ = writeln!(
+                    s,
+                    "- {} {}: {} (reproduce: `cargo test --release --test audit {}`)",
+                    p.krate,
+                    p.method,
+                    names.join(", "),
+                    p.test
+                );
+                let evidence = evidence_on(f.expected.evidence, &props);
+                for e in &evidence {
+                    let _ = writeln!(s, "  - {e}");
+                }
+                if evidence.is_empty() {
+                    let _ = writeln!(
+                        s,
+                        "  - no independent evidence on file: see the disagreements below"
+                    );
+                }
                 for row in &f.rows {
-                    for reason in &row.reasons {
-                        if reason.contains("though claimed")
-                            || reason.contains("fail order")
-                            || reason.contains("too cheap")
-                            || reason.contains("must not drift")
-                        {
+                    for &i in &refuted {
+                        if let Some(reason) = &row.reasons[i] {
                             let _ = writeln!(
                                 s,
                                 "  - measured on {}: {}",
@@ -226,6 +299,30 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
                 }
             }
             Audit::Adaptive(x) => {
+                let refuted = x.rows.iter().any(|r| {
+                    r.verdict == Verdict::Fail
+                        || r.step_exponent
+                            .is_some_and(|s| s > crate::FIRST_ORDER_GROWTH)
+                });
+                if !refuted {
+                    continue;
+                }
+                let ladder_failed = x.rows.iter().any(|r| r.verdict == Verdict::Fail);
+                let _ = writeln!(
+                    s,
+                    "- {} {}: {} (reproduce: `cargo test --release --test audit {}`)",
+                    p.krate,
+                    p.method,
+                    if ladder_failed {
+                        "order and estimate order (tolerance ladder)"
+                    } else {
+                        "estimate order (step growth)"
+                    },
+                    p.test
+                );
+                for e in evidence_on(x.expected.evidence, &[Prop::Estimate, Prop::Order]) {
+                    let _ = writeln!(s, "  - {e}");
+                }
                 for row in &x.rows {
                     let _ = writeln!(
                         s,
@@ -239,8 +336,52 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
             }
         }
     }
+    let _ = writeln!(
+        s,
+        "\n## Findings on properties the crates do not claim\n\n\
+         Each tested value below is the method's in theory or its own table's cost, not the crate's word; in\n\
+         the measured lines stepladder's \"claimed\" reads \"tested\".\n"
+    );
+    for a in audits {
+        let Audit::Fixed(f) = a else { continue };
+        let (_, findings) = fixed_failures(f);
+        if findings.is_empty() {
+            continue;
+        }
+        let p = &f.provenance;
+        let props: Vec<Prop> = findings.iter().map(|&i| FIXED_PROPS[i]).collect();
+        let _ = writeln!(
+            s,
+            "- {} {} (reproduce: `cargo test --release --test audit {}`)",
+            p.krate, p.method, p.test
+        );
+        for prop in &props {
+            if let Some(property) = p.property(*prop) {
+                let _ = writeln!(s, "  - {}: {}", prop.name(), property.basis);
+            }
+        }
+        for e in evidence_on(f.expected.evidence, &props) {
+            let _ = writeln!(s, "  - {e}");
+        }
+        for row in &f.rows {
+            for &i in &findings {
+                if let Some(reason) = &row.reasons[i] {
+                    let _ = writeln!(
+                        s,
+                        "  - measured on {}: {}",
+                        row.scene,
+                        first_sentence(&tested_wording(reason))
+                    );
+                }
+            }
+        }
+    }
     let _ = writeln!(s, "\n## Not visible on autonomous scenes\n");
     for line in NOT_VISIBLE {
+        let _ = writeln!(s, "- {line}");
+    }
+    let _ = writeln!(s, "\n## Where the harness and the independent checks differ\n");
+    for line in HARNESS_VS_INDEPENDENT {
         let _ = writeln!(s, "- {line}");
     }
     let all: Vec<String> = audits.iter().flat_map(disagreements).collect();
@@ -252,14 +393,32 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
             let _ = writeln!(s, "- {d}");
         }
     }
-    let _ = writeln!(s, "\n## Where the claims were read\n");
+    let _ = writeln!(
+        s,
+        "\n## Where the claims were read\n\n\
+         Paths are inside the published crates (`~/.cargo/registry/src/*/` after `cargo fetch`); a line range\n\
+         is a sentence that runs over several lines. \"not claimed\" gives where the tested value comes from.\n\n\
+         | method | property | the crate's words | where | remark |\n\
+         | --- | --- | --- | --- | --- |"
+    );
     for a in audits {
         let p = a.provenance();
-        let _ = writeln!(
-            s,
-            "- {} {}: {}; evaluations: {}.",
-            p.krate, p.method, p.claims_from, p.evaluations_claim
-        );
+        for property in p.properties {
+            let (words, at) = match &property.claim {
+                Some(c) => (format!("\"{}\"", c.quote.replace('|', "\\|")), format!("`{}`", c.at)),
+                None => ("not claimed".to_string(), "-".to_string()),
+            };
+            let _ = writeln!(
+                s,
+                "| {} {} | {} | {} | {} | {} |",
+                p.krate,
+                p.method,
+                property.prop.name(),
+                words,
+                at,
+                property.basis
+            );
+        }
     }
     s
 }
