@@ -130,6 +130,10 @@ pub enum LadderEnd {
     Cap,
     /// A fixed ladder ran every rung it was given.
     Fixed,
+    /// A run broke down at a finer step than a rung that resolved the
+    /// motion, or panicked (see [`crate::study::breakdown`]): finer rungs
+    /// cannot undo it.
+    Breakdown,
 }
 
 /// A geometric ladder `h_k = h0 * ratio^k`, `k = 0..levels`.

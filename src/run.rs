@@ -1,5 +1,6 @@
 //! The integration loop every study uses: fixed steps, synchronised output at
-//! every step, and a blow-up detected as a measured outcome.
+//! every step, and a blow-up, a failed step or a panic in the scheme's code
+//! detected as a measured outcome, with where it happened.
 
 use crate::scene::Scene;
 use crate::scheme::{Scheme, SolveTally, StepFailure};
@@ -21,6 +22,11 @@ pub enum Outcome {
         step: u64,
         /// Its time.
         time: f64,
+        /// The coordinate that did it (`q[i]` or `v[i]`): the first that is
+        /// not finite, else the largest in the scaled phase space `(q, v/w)`.
+        coordinate: String,
+        /// Its value there (`NaN` prints as `null` in JSON).
+        value: f64,
     },
     /// A step could not be carried out.
     Failed {
@@ -41,6 +47,58 @@ impl Outcome {
         matches!(self, Outcome::Completed)
     }
 
+    /// The step size of a run that stopped (`None` for a completed one).
+    pub fn h(&self) -> Option<f64> {
+        match self {
+            Outcome::Completed => None,
+            Outcome::Unstable { h, .. } | Outcome::Failed { h, .. } => Some(*h),
+        }
+    }
+
+    /// The step at which a run stopped (`None` for a completed one).
+    pub fn step(&self) -> Option<u64> {
+        match self {
+            Outcome::Completed => None,
+            Outcome::Unstable { step, .. } | Outcome::Failed { step, .. } => Some(*step),
+        }
+    }
+
+    /// True for a run stopped by a panic in the scheme's code.
+    pub fn panicked(&self) -> bool {
+        matches!(self, Outcome::Failed { failure, .. } if failure.panicked())
+    }
+
+    /// Where a run stopped and why, without the step size: "step 4 (t =
+    /// 28): v[0] = NaN".
+    pub fn where_and_why(&self) -> String {
+        use crate::wording::figure;
+        match self {
+            Outcome::Completed => "no step (it completed)".to_string(),
+            Outcome::Unstable {
+                step,
+                time,
+                coordinate,
+                value,
+                ..
+            } => format!(
+                "step {step} (t = {}): {coordinate} = {}{}",
+                figure(*time),
+                figure(*value),
+                if value.is_finite() {
+                    ", past the blow-up bound"
+                } else {
+                    ""
+                }
+            ),
+            Outcome::Failed {
+                step,
+                time,
+                failure,
+                ..
+            } => format!("step {step} (t = {}): {failure}", figure(*time)),
+        }
+    }
+
     /// The outcome in a few words with three-digit figures and without the
     /// step, for a reason that states the step already: "unstable: blew up
     /// at step 57702 (t = 14.2)".
@@ -48,8 +106,23 @@ impl Outcome {
         use crate::wording::figure;
         match self {
             Outcome::Completed => "completed".to_string(),
-            Outcome::Unstable { step, time, .. } => {
-                format!("unstable: blew up at step {step} (t = {})", figure(*time))
+            Outcome::Unstable {
+                step,
+                time,
+                coordinate,
+                value,
+                ..
+            } => {
+                format!(
+                    "{}: {coordinate} = {} at step {step} (t = {})",
+                    if value.is_finite() {
+                        "unstable"
+                    } else {
+                        "not finite"
+                    },
+                    figure(*value),
+                    figure(*time)
+                )
             }
             Outcome::Failed {
                 step,
@@ -65,8 +138,25 @@ impl std::fmt::Display for Outcome {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Outcome::Completed => write!(f, "completed"),
-            Outcome::Unstable { h, step, time } => {
-                write!(f, "unstable at h = {h}, after {step} steps (t = {time:.6})")
+            Outcome::Unstable {
+                h,
+                step,
+                time,
+                coordinate,
+                value,
+            } => {
+                write!(
+                    f,
+                    "{} at h = {}, step {step} (t = {}): {coordinate} = {}",
+                    if value.is_finite() {
+                        "unstable"
+                    } else {
+                        "not finite"
+                    },
+                    crate::wording::figure(*h),
+                    crate::wording::figure(*time),
+                    crate::wording::figure(*value)
+                )
             }
             Outcome::Failed {
                 h,
@@ -76,7 +166,9 @@ impl std::fmt::Display for Outcome {
             } => {
                 write!(
                     f,
-                    "step {step} at h = {h} failed (t = {time:.6}): {failure}"
+                    "step {step} at h = {} failed (t = {}): {failure}",
+                    crate::wording::figure(*h),
+                    crate::wording::figure(*time)
                 )
             }
         }
@@ -112,26 +204,88 @@ pub fn integrate_tallied<M: Scheme, S: Scene<D>, const D: usize>(
 ) -> (Outcome, Option<SolveTally>) {
     let bound = tolerance::blow_up_bound(scene.scale());
     let w = scene.frequency();
-    let mut carry = scheme.start(scene, start, h);
+    let failed = |step: u64, failure: StepFailure| Outcome::Failed {
+        h,
+        step,
+        time: step as f64 * h,
+        failure,
+    };
+    // The scheme's start, step and state are the user's code: a panic there
+    // is caught and becomes this run's outcome, with where it happened.
+    let mut carry = match caught(|| scheme.start(scene, start, h)) {
+        Ok(carry) => carry,
+        Err(message) => return (failed(0, StepFailure::Panicked { message }), None),
+    };
     observe(0, 0.0, start);
     for n in 1..=steps {
-        let time = n as f64 * h;
-        if let Err(failure) = scheme.step(scene, &mut carry, h) {
-            let outcome = Outcome::Failed {
+        let stepped = caught(|| {
+            scheme.step(scene, &mut carry, h)?;
+            Ok(scheme.state(&carry, h))
+        });
+        let s = match stepped {
+            Ok(Ok(s)) => s,
+            Ok(Err(failure)) => return (failed(n, failure), scheme.solve_tally(&carry)),
+            Err(message) => return (failed(n, StepFailure::Panicked { message }), None),
+        };
+        let size2 = s.q.norm_squared() + (s.v / w).norm_squared();
+        if size2.is_nan() || size2 > bound * bound {
+            let (coordinate, value) = culprit(&s, w);
+            let outcome = Outcome::Unstable {
                 h,
                 step: n,
-                time,
-                failure,
+                time: n as f64 * h,
+                coordinate,
+                value,
             };
             return (outcome, scheme.solve_tally(&carry));
         }
-        let s = scheme.state(&carry, h);
-        let size2 = s.q.norm_squared() + (s.v / w).norm_squared();
-        if size2.is_nan() || size2 > bound * bound {
-            let outcome = Outcome::Unstable { h, step: n, time };
-            return (outcome, scheme.solve_tally(&carry));
-        }
-        observe(n, time, &s);
+        observe(n, n as f64 * h, &s);
     }
     (Outcome::Completed, scheme.solve_tally(&carry))
+}
+
+/// The coordinate of a state that has left the bound: the first that is not
+/// finite, else the largest in the scaled phase space `(q, v/w)`.
+fn culprit<const D: usize>(s: &State<D>, w: f64) -> (String, f64) {
+    let coordinates = (0..D)
+        .map(|i| (format!("q[{i}]"), s.q[i], s.q[i]))
+        .chain((0..D).map(|i| (format!("v[{i}]"), s.v[i], s.v[i] / w)));
+    let mut largest = (String::new(), 0.0, -1.0);
+    for (name, value, scaled) in coordinates {
+        if !value.is_finite() {
+            return (name, value);
+        }
+        if scaled.abs() > largest.2 {
+            largest = (name, value, scaled.abs());
+        }
+    }
+    (largest.0, largest.1)
+}
+
+/// One step of the scheme's own code, a panic in it reported as
+/// [`StepFailure::Panicked`]: for the studies that step a carry themselves.
+pub(crate) fn guarded_step<M: Scheme, S: Scene<D>, R: crate::state::Real, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    carry: &mut M::Carry<R, D>,
+    h: R,
+) -> Result<(), StepFailure> {
+    caught(|| scheme.step(scene, carry, h))
+        .unwrap_or_else(|message| Err(StepFailure::Panicked { message }))
+}
+
+/// Runs `f`, a call into a scheme's or an integrator's own code, and turns a
+/// panic in it into the panic's message. Only user code runs inside: a
+/// panic of the harness itself is a bug of the harness and propagates. (A
+/// crate built with `panic = "abort"` aborts instead; nothing can catch that.)
+pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|payload| {
+        if let Some(text) = payload.downcast_ref::<&str>() {
+            (*text).to_string()
+        } else if let Some(text) = payload.downcast_ref::<String>() {
+            text.clone()
+        } else {
+            "a panic whose payload is not text".to_string()
+        }
+    })
 }

@@ -400,6 +400,10 @@ pub(crate) fn median_of(mut v: Vec<f64>) -> f64 {
 pub enum DropReason {
     /// The run blew up or a step failed.
     Unstable,
+    /// The run stopped at a finer step than a rung that resolved the
+    /// motion: a defect, which fails the claim (see
+    /// [`crate::study::breakdown`]).
+    Breakdown,
     /// The error is not small against the orbit ([`crate::tolerance::ERROR_CEILING`]).
     AboveCeiling,
     /// The local order has not yet settled (coarse end of the ladder).
@@ -418,6 +422,7 @@ impl DropReason {
     pub fn explain(self) -> &'static str {
         match self {
             DropReason::Unstable => "unstable",
+            DropReason::Breakdown => "broke down below a clean step",
             DropReason::AboveCeiling => "error above 30% of the orbit",
             DropReason::PreAsymptotic => "pre-asymptotic",
             DropReason::RoundOff => "round-off floor",

@@ -425,3 +425,14 @@ mod outer_solar_system;
 mod pleiades;
 pub use outer_solar_system::OuterSolarSystem;
 pub use pleiades::Pleiades;
+
+/// What relative energy errors are relative to: `|E0|`, or for a scene with
+/// zero energy its kinetic energy scale, so the ratio stays finite.
+pub fn energy_norm<S: Scene<D>, const D: usize>(scene: &S) -> f64 {
+    let e0 = scene.energy(&scene.initial());
+    if e0 != 0.0 {
+        e0.abs()
+    } else {
+        0.5 * (scene.frequency() * scene.scale()).powi(2)
+    }
+}

@@ -173,8 +173,9 @@ impl SchemeMeta {
 }
 
 /// Why a single step could not be completed (an implicit solve that did not
-/// converge, say). A blow-up is not a failure of the step: it is detected by
-/// the run and reported as instability.
+/// converge, say, or a panic in the scheme's own code, caught by the run). A
+/// blow-up is not a failure of the step: it is detected by the run and
+/// reported as instability.
 #[derive(Clone, Debug, PartialEq, Serialize, thiserror::Error)]
 pub enum StepFailure {
     /// The implicit equation of the step was not solved to tolerance.
@@ -187,6 +188,21 @@ pub enum StepFailure {
         /// The last correction's size.
         residual: f64,
     },
+    /// The scheme's code panicked (caught by the run, see
+    /// [`crate::run::caught`]): a defect of the step at any step size, since a
+    /// run only ever hands a step a finite state within the blow-up bound.
+    #[error("the step panicked: {message}")]
+    Panicked {
+        /// The panic's message.
+        message: String,
+    },
+}
+
+impl StepFailure {
+    /// True for a panic in the scheme's code.
+    pub fn panicked(&self) -> bool {
+        matches!(self, StepFailure::Panicked { .. })
+    }
 }
 
 /// A time integrator for `q'' = a(q)` on any scene and in any scalar type.

@@ -31,6 +31,8 @@ pub mod accuracy;
 #[doc(hidden)]
 pub mod adaptive;
 #[doc(hidden)]
+pub mod breakdown;
+#[doc(hidden)]
 pub mod case;
 #[doc(hidden)]
 pub mod cost;
@@ -72,4 +74,5 @@ pub use round_off::floor::{RoundoffRecord, RoundoffSpec, roundoff};
 pub use round_off::longrun::{LongrunRecord, LongrunSpec, longrun};
 pub use stability::{StabilityRecord, stability};
 
+pub use breakdown::Breakdown;
 pub use verdict::Verdict;

@@ -131,7 +131,9 @@ fn an_unsolvable_step_fails_cleanly() {
     let h = 0.5;
     let mut c = ImplicitMidpoint.start(&scene, &s0, h);
     let err = ImplicitMidpoint.step(&scene, &mut c, h).unwrap_err();
-    let StepFailure::NotConverged { iterations, .. } = err;
+    let StepFailure::NotConverged { iterations, .. } = err else {
+        panic!("a failed solve is reported as one, not as {err:?}");
+    };
     assert!((1..=MAX_ITERATIONS).contains(&iterations), "{iterations}");
     assert_eq!(ImplicitMidpoint.state(&c, h), s0);
     assert_eq!(c.last_iterations, iterations);

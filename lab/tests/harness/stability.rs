@@ -7,6 +7,7 @@ use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, vis
 use stepladder::study::accuracy::phase::one_step_matrix;
 use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
 use stepladder::study::stability::{StabilityRecord, spectral_radius, stability};
+use stepladder::study::verdict::Verdict;
 
 struct Stability;
 impl SchemeVisitor for Stability {
@@ -127,11 +128,16 @@ fn a_stiff_oscillator_above_the_limit_ends_early_with_a_clear_verdict() {
     // the larger eigenvalue is 2.67 in modulus (2.5^2/2 - 1 + sqrt(...)): the
     // state grows by 1e6 within about 15 steps
     assert!(step < 30, "stopped only after {step} steps");
+    assert!(r.reason.starts_with("unstable: q[0] = "), "{}", r.reason);
+    // the reason says why: the step is past the scheme's limit, and a finer
+    // one runs
     assert!(
-        r.reason.starts_with("unstable: blew up at step"),
+        r.reason
+            .contains("h w = 2.50 is past the scheme's linear stability limit h w = 2.00"),
         "{}",
         r.reason
     );
+    assert_eq!(r.verdict, Verdict::Inconclusive, "{}", r.reason);
 }
 
 // ---------------------------------------------------------------------------

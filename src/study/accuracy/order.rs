@@ -53,6 +53,7 @@ use crate::scene::{Invariant, InvariantValue, Scaled, Scene};
 use crate::scheme::{Scheme, SolveTally};
 use crate::state::State;
 use crate::study::accuracy::invariants::{InvariantRecord, InvariantSample, judge_invariant};
+use crate::study::breakdown::{Breakdown, LadderRun, in_ladder};
 use crate::study::verdict::Verdict;
 use crate::tolerance::{
     self, ERROR_CEILING, EXACT_SOLUTION_ULPS, MIN_WINDOW, MIN_WINDOW_HALVINGS, TWIN_SCALE,
@@ -174,6 +175,12 @@ pub struct OrderRecord {
     pub reason: String,
     /// For an inconclusive verdict, what to change so the data can decide.
     pub advice: Option<String>,
+    /// A run that stopped where it should have run (a panic, or a stop at a
+    /// finer step than a rung that resolved the motion): the claim fails on
+    /// it whatever the rungs before it show (see
+    /// [`crate::study::breakdown`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub breakdown: Option<Breakdown>,
     /// Without an exact solution, whether each quantity the scene's exact
     /// flow conserves returns to its initial value as `h -> 0` (see
     /// [`crate::study::accuracy::invariants`]); a failure fails the order
@@ -354,6 +361,8 @@ struct Run<const D: usize> {
     invariant_round_off: Vec<f64>,
     /// What the scheme's solves reported over the run.
     solve: Option<SolveTally>,
+    /// How its twin ended, when the twin stopped.
+    twin_outcome: Option<Outcome>,
 }
 
 /// The runs of one order study, keyed by step count.
@@ -445,6 +454,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             let run = self.runs.get_mut(&steps).expect("run");
             run.round_off_sample = Some(sample);
             run.invariant_round_off = invariant_round_off;
+            run.twin_outcome = (!twin_outcome.completed()).then_some(twin_outcome);
         }
         if self.reference == Reference::Exact {
             self.compare_exact(steps);
@@ -545,6 +555,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
                 invariants,
                 invariant_round_off: Vec::new(),
                 solve,
+                twin_outcome: None,
             },
         );
     }
@@ -640,6 +651,10 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             if self.at_floor() {
                 return Ok(LadderEnd::Floor);
             }
+            // finer rungs cannot undo a breakdown (see `breakdown.rs`)
+            if self.breakdown().is_some() {
+                return Ok(LadderEnd::Breakdown);
+            }
         }
         unreachable!("the interleaved ladder is endless")
     }
@@ -686,6 +701,36 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             }
             None => (std::f64::consts::LN_2, 1.0),
         }
+    }
+
+    /// The breakdown among the runs so far (every rung, half-step reference
+    /// and twin), by the rule of [`crate::study::breakdown`].
+    fn breakdown(&self) -> Option<Breakdown> {
+        let mut runs = Vec::with_capacity(2 * self.runs.len());
+        for (&steps, r) in &self.runs {
+            let h = self.t_end / steps as f64;
+            runs.push(LadderRun {
+                steps,
+                h,
+                outcome: &r.outcome,
+                relative_error: r.error.filter(|_| r.measured).map(|e| e / self.scale),
+                run: if r.measured {
+                    "the rung"
+                } else {
+                    "a half-step reference"
+                },
+            });
+            if let Some(twin) = &r.twin_outcome {
+                runs.push(LadderRun {
+                    steps,
+                    h,
+                    outcome: twin,
+                    relative_error: None,
+                    run: "the rung's twin (the same motion in other units)",
+                });
+            }
+        }
+        in_ladder(&runs)
     }
 
     /// The exact solution's own inaccuracy, which every rung's error carries.
@@ -850,6 +895,20 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             end,
             self.scale,
         );
+        let breakdown = self.breakdown();
+        if let Some(b) = &breakdown {
+            // no claim passes on the rungs before a breakdown
+            judgement.verdict = Verdict::Fail;
+            judgement.reason = b.describe();
+            judgement.advice = None;
+            let clean = b.clean_h.unwrap_or(f64::INFINITY);
+            for rung in rungs
+                .iter_mut()
+                .filter(|r| !r.outcome.completed() && r.h < clean)
+            {
+                rung.dropped = Some(DropReason::Breakdown);
+            }
+        }
         let invariants = self.invariant_records(analysis.ci95.map(|ci| ci[0]));
         if judgement.verdict == Verdict::Pass
             && let Some(broken) = invariants.iter().find(|r| r.verdict == Verdict::Fail)
@@ -887,6 +946,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             verdict: judgement.verdict,
             reason: judgement.reason,
             advice: judgement.advice,
+            breakdown,
             invariants,
             rungs: all,
         }

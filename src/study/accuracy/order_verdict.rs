@@ -72,6 +72,10 @@ pub(crate) fn judge(
         ),
         LadderEnd::Floor => "the ladder reached the round-off floor".to_string(),
         LadderEnd::Fixed => "a fixed ladder".to_string(),
+        LadderEnd::Breakdown => format!(
+            "the ladder stopped at a breakdown, h = {}",
+            figure(finest_h)
+        ),
     };
     if let Some(r) = reduction {
         return Judgement::fail(
@@ -160,6 +164,8 @@ pub(crate) fn judge(
              shorten t_end, which lowers the floor and lets the ladder reach finer steps"
         }
         LadderEnd::Fixed => "use the automatic ladder, which runs to the floor",
+        // the breakdown decides before any advice is read
+        LadderEnd::Breakdown => "",
     };
     Judgement::inconclusive(format!("{unsettled} ({end_note})"), advice.into())
 }
@@ -308,6 +314,7 @@ fn judge_fit(
                             "use the automatic ladder, which runs on to where the claimed \
                              order's term dominates"
                         }
+                        LadderEnd::Breakdown => "",
                     }
                     .into(),
                 ),

@@ -50,11 +50,16 @@ pub struct PhaseRecord {
 /// linear, so its columns are the images of the basis).
 pub fn one_step_matrix<M: Scheme>(scheme: &M, z: f64) -> Option<Matrix2<f64>> {
     let osc = Harmonic::default();
+    // a step that fails or panics has no matrix
     let image = |x: f64, v: f64| -> Option<State<1>> {
-        let s = State::new(Vector1::new(x), Vector1::new(v));
-        let mut carry = scheme.start(&osc, &s, z);
-        scheme.step(&osc, &mut carry, z).ok()?;
-        Some(scheme.state(&carry, z))
+        crate::run::caught(|| {
+            let s = State::new(Vector1::new(x), Vector1::new(v));
+            let mut carry = scheme.start(&osc, &s, z);
+            scheme.step(&osc, &mut carry, z).ok()?;
+            Some(scheme.state(&carry, z))
+        })
+        .ok()
+        .flatten()
     };
     let (c1, c2) = (image(1.0, 0.0)?, image(0.0, 1.0)?);
     Some(Matrix2::new(c1.q[0], c2.q[0], c1.v[0], c2.v[0]))

@@ -65,16 +65,17 @@
 //! refutes a claim the pair does not make: a verdict fails only when a
 //! claim of conservation or symmetry is contradicted.
 
-use super::integrator::{AdaptiveClaims, AdaptiveIntegrator, RunEnd};
+use super::integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
 use super::judge::{
     bookkeeping, cost_growth, error_factor, judge_energy, judge_exponent, judge_round_trip,
 };
 use super::record::{
-    EnergyGrowth, JudgedClaim, MIN_FIT_POINTS, Proportionality, RoundTrip, ToleranceLadderRecord,
-    TolerancePoint,
+    AdaptiveClaim, EnergyGrowth, JudgedClaim, MIN_FIT_POINTS, Proportionality, RoundTrip,
+    ToleranceLadderRecord, TolerancePoint,
 };
 use crate::error::Error;
 use crate::maths::fit::{OrderFit, order_fit_with_round_off, power_law};
+use crate::run::caught;
 use crate::scene::Scene;
 use crate::state::State;
 use crate::study::geometry::energy::{EnergyClass, classify_growth, energy_norm};
@@ -82,6 +83,7 @@ use crate::study::verdict::Verdict;
 use crate::tolerance::{
     self, ERROR_CEILING, GROWTH_DECADES, reverse_tolerance_ulps, round_off_energy,
 };
+use crate::wording::figure;
 use serde::Serialize;
 
 /// The tolerances of the ladder: one a decade from loose to near round-off.
@@ -174,6 +176,10 @@ pub fn tolerance_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     let mut points = Vec::with_capacity(spec.tolerances.len());
     for &tol in &spec.tolerances {
         points.push(point(integrator, scene, t_end, tol)?);
+        if points.last().is_some_and(|p| p.breakdown.is_some()) {
+            // tighter tolerances cannot undo a breakdown
+            break;
+        }
     }
     let mut proportionality = fit_exponent(&mut points, &claims);
     if let Some(f) = proportionality.as_mut().filter(|f| !f.agrees()) {
@@ -185,29 +191,55 @@ pub fn tolerance_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
             .collect();
         f.step_scaling = power_law(&steps);
     }
-    let energy = (spec.energy_periods > 0.0)
-        .then(|| {
+    // a panic in the integrator's code fails the claim its run decides
+    let panicked = |claim: AdaptiveClaim, run: &str, message: String| JudgedClaim {
+        claim,
+        verdict: Verdict::Fail,
+        reason: format!(
+            "breakdown: {run} at TOL = {:.0e} panicked: {message}",
+            spec.geometry_tolerance
+        ),
+    };
+    let (energy, energy_panic) = if spec.energy_periods > 0.0 {
+        match caught(|| {
             energy_growth(
                 integrator,
                 scene,
                 spec.geometry_tolerance,
                 spec.energy_periods,
             )
-        })
-        .transpose()?;
-    let round_trip = Some(round_trip(
-        integrator,
-        scene,
-        t_end,
-        spec.geometry_tolerance,
-    )?);
+        }) {
+            Ok(run) => (Some(run?), None),
+            Err(message) => (None, Some(message)),
+        }
+    } else {
+        (None, None)
+    };
+    let (round_trip, round_trip_panic) =
+        match caught(|| round_trip(integrator, scene, t_end, spec.geometry_tolerance)) {
+            Ok(run) => (Some(run?), None),
+            Err(message) => (None, Some(message)),
+        };
     let judged: Vec<JudgedClaim> = [
-        Some(judge_exponent(&claims, proportionality.as_ref())),
+        Some(match points.iter().find(|p| p.breakdown.is_some()) {
+            Some(p) => breakdown_claim(p),
+            None => judge_exponent(&claims, proportionality.as_ref()),
+        }),
         error_factor(&claims, &points),
         cost_growth(&claims, &points),
         bookkeeping(&points),
-        energy.as_ref().map(|e| judge_energy(&claims, e)),
-        round_trip.as_ref().map(|r| judge_round_trip(&claims, r)),
+        match energy_panic {
+            Some(message) => Some(panicked(AdaptiveClaim::Energy, "the long run", message)),
+            None => energy.as_ref().map(|e| judge_energy(&claims, e)),
+        },
+        match round_trip_panic {
+            Some(message) => Some(panicked(
+                AdaptiveClaim::RoundTrip,
+                "the round trip",
+                message,
+            )),
+            None => round_trip.as_ref().map(|r| judge_round_trip(&claims, r)),
+        },
     ]
     .into_iter()
     .flatten()
@@ -245,13 +277,66 @@ fn round_off_bound<S: Scene<D>, const D: usize>(scene: &S, steps: u64) -> f64 {
     8.0 * f64::EPSILON * steps as f64 * scene.scale()
 }
 
+/// The exponent's claim failed by a run that broke down. An adaptive
+/// integrator accepts a step only when its error estimate is within the
+/// tolerance, and no estimate of a non-finite state is (every comparison
+/// with NaN is false): a non-finite accepted state, like a panic, is a
+/// defect at any tolerance, and no tolerance's error can pass the claim
+/// past it.
+fn breakdown_claim(p: &TolerancePoint) -> JudgedClaim {
+    JudgedClaim {
+        claim: AdaptiveClaim::Exponent,
+        verdict: Verdict::Fail,
+        reason: format!(
+            "breakdown: the run at TOL = {:.0e} {}; an adaptive step is accepted only with an \
+             error estimate within the tolerance, which no non-finite state has",
+            p.tolerance,
+            p.breakdown.as_deref().unwrap_or("broke down")
+        ),
+    }
+}
+
+/// Where an adaptive run first accepted a non-finite state.
+fn first_non_finite<const D: usize>(run: &AdaptiveRun<D>) -> Option<String> {
+    let (k, (t, s)) = run
+        .trajectory
+        .iter()
+        .enumerate()
+        .find(|(_, (t, s))| !t.is_finite() || !s.is_finite())?;
+    let coordinate = (0..D)
+        .map(|i| (format!("q[{i}]"), s.q[i]))
+        .chain((0..D).map(|i| (format!("v[{i}]"), s.v[i])))
+        .find(|(_, x)| !x.is_finite())
+        .map_or("t".to_string(), |(name, x)| format!("{name} = {x}"));
+    Some(format!(
+        "accepted a non-finite state at step {k} (t = {}): {coordinate}",
+        figure(*t)
+    ))
+}
+
 pub(crate) fn point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     integrator: &I,
     scene: &S,
     t_end: f64,
     tol: f64,
 ) -> Result<TolerancePoint, Error> {
-    let run = integrator.run(scene, t_end, tol)?;
+    let run = match caught(|| integrator.run(scene, t_end, tol)) {
+        Ok(run) => run?,
+        Err(message) => {
+            return Ok(TolerancePoint {
+                tolerance: tol,
+                evaluations: 0,
+                accepted: 0,
+                rejected: 0,
+                end: RunEnd::GaveUp,
+                error: None,
+                round_off: 0.0,
+                fitted: false,
+                reported_evaluations: None,
+                breakdown: Some(format!("panicked: {message}")),
+            });
+        }
+    };
     let error = if run.end == RunEnd::Reached && scene.exact(0.0).is_some() {
         // a NaN anywhere poisons the maximum (f64::max would drop it)
         let worst = run
@@ -280,6 +365,7 @@ pub(crate) fn point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         round_off: round_off_bound(scene, run.accepted),
         fitted: false,
         reported_evaluations: run.reported_evaluations,
+        breakdown: first_non_finite(&run),
     })
 }
 
@@ -341,7 +427,10 @@ fn method_order_at_steps<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     let mut data = Vec::new();
     let mut perturbation = Vec::new();
     for p in points.iter().filter(|p| p.fitted) {
-        let e = integrator.fixed_step_error(scene, t_end, p.accepted)?;
+        // supporting evidence only: a panic here leaves it out
+        let e = caught(|| integrator.fixed_step_error(scene, t_end, p.accepted))
+            .ok()
+            .flatten()?;
         if e.is_nan() || e <= 0.0 {
             return None;
         }
@@ -658,6 +747,7 @@ mod tests {
                     round_off: 1e-15,
                     fitted: d < 12,
                     reported_evaluations: None,
+                    breakdown: None,
                 }
             })
             .collect()

@@ -13,7 +13,7 @@ use serde::Serialize;
 pub const MIN_FIT_POINTS: usize = MIN_POINTS;
 
 /// One tolerance's run to `t_end`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TolerancePoint {
     /// The tolerance.
     pub tolerance: f64,
@@ -37,6 +37,11 @@ pub struct TolerancePoint {
     /// What the integrator reported it spent, where it reports it apart
     /// from the counted `evaluations` (a black box's statistics).
     pub reported_evaluations: Option<u64>,
+    /// Where the run broke down: its first accepted state that is not
+    /// finite, or a panic in the integrator's code (see
+    /// [`crate::study::breakdown`]); the exponent's claim fails on it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub breakdown: Option<String>,
 }
 
 /// The fitted exponent of `e ~ TOL^k` against its theory.

@@ -17,10 +17,12 @@
 //! report; an implicit black box reports nothing, so its count is shown and
 //! not judged.
 
-use crate::run::integrate;
+use crate::run::{Outcome, caught, integrate};
 use crate::scene::{Counted, Scene};
 use crate::scheme::Scheme;
+use crate::study::breakdown::probe;
 use crate::study::verdict::Verdict;
+use crate::wording::figure;
 use serde::Serialize;
 
 /// Steps of the shorter counting run; the longer one takes twice as many.
@@ -61,7 +63,8 @@ pub fn evaluations<M: Scheme, S: Scene<D>, const D: usize>(
     let meta = scheme.meta();
     let start = {
         let counted = Counted::new(scene);
-        let _ = scheme.start(&counted, &counted.initial(), h);
+        // a panic here shows again in the counting runs, which report it
+        let _ = caught(|| scheme.start(&counted, &counted.initial(), h));
         counted.evaluations()
     };
     let short = counted_run(scheme, scene, h, COUNT_STEPS);
@@ -76,12 +79,22 @@ pub fn evaluations<M: Scheme, S: Scene<D>, const D: usize>(
         verdict: Verdict::Inconclusive,
         reason: String::new(),
     };
-    let (Some((short, short_reported)), Some((long, long_reported))) = (short, long) else {
-        record.reason = format!(
-            "a run of {} steps of h = {h:.3e} did not complete, so nothing was counted",
-            2 * COUNT_STEPS
-        );
-        return record;
+    let ((short, short_reported), (long, long_reported)) = match (short, long) {
+        (Ok(short), Ok(long)) => (short, long),
+        (Err(stop), _) | (_, Err(stop)) => {
+            // a defect of the step (a panic, a stop below a step that runs
+            // cleanly) fails; instability at the counting step decides nothing
+            let probe = probe(scheme, scene, &scene.initial(), h, &stop);
+            if probe.is_defect() {
+                record.verdict = Verdict::Fail;
+            }
+            record.reason = format!(
+                "the counting run of h = {} did not complete, so nothing was counted: {}",
+                figure(h),
+                probe.describe(h, &stop)
+            );
+            return record;
+        }
     };
     let per_step = (long - short) as f64 / COUNT_STEPS as f64;
     record.per_step = per_step;
@@ -143,35 +156,39 @@ pub fn counting_step<S: Scene<D>, const D: usize>(scene: &S) -> f64 {
 }
 
 /// The evaluations of `steps` steps from the scene's start, counted, and
-/// what an implicit scheme's solves report; `None` when a step failed or the
-/// run blew up.
+/// what an implicit scheme's solves report; how the run stopped when a step
+/// failed, panicked or the run blew up.
 fn counted_run<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
     h: f64,
     steps: u64,
-) -> Option<(u64, Option<u64>)> {
+) -> Result<(u64, Option<u64>), Outcome> {
     let counted = Counted::new(scene);
     let outcome = integrate(scheme, &counted, &counted.initial(), h, steps, |_, _, _| {});
     if !outcome.completed() {
-        return None;
+        return Err(outcome);
     }
     let total = counted.evaluations();
     if !scheme.meta().implicit {
-        return Some((total, None));
+        return Ok((total, None));
     }
     // an implicit scheme's own report of what its solves spent, over the
-    // same run
-    let mut carry = scheme.start(scene, &scene.initial(), h);
-    let before = scheme.solver_evaluations(&carry);
-    for _ in 0..steps {
-        scheme.step(scene, &mut carry, h).ok()?;
-    }
-    let reported = match (before, scheme.solver_evaluations(&carry)) {
-        (Some(b), Some(a)) => Some(a - b),
-        _ => None,
-    };
-    Some((total, reported))
+    // same run (which completed above, so its steps succeed again)
+    let reported = caught(|| {
+        let mut carry = scheme.start(scene, &scene.initial(), h);
+        let before = scheme.solver_evaluations(&carry);
+        for _ in 0..steps {
+            scheme.step(scene, &mut carry, h).ok()?;
+        }
+        match (before, scheme.solver_evaluations(&carry)) {
+            (Some(b), Some(a)) => Some(a - b),
+            _ => None,
+        }
+    })
+    .ok()
+    .flatten();
+    Ok((total, reported))
 }
 
 /// The evaluations per step cost figures charge an explicit scheme: the

@@ -18,6 +18,7 @@ use crate::maths::fit::power_law;
 use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
+use crate::study::breakdown::{Breakdown, Probe, probe};
 use crate::study::verdict::Verdict;
 use crate::tolerance::{
     BOUNDED_BELOW, GROWTH_DECADES, LOST_FRACTION, LOST_GROWTH, RANDOM_WALK_BELOW, round_off_energy,
@@ -111,16 +112,7 @@ fn resolving_step<M: Scheme, S: Scene<D>, const D: usize>(
     (h, StepChoice::Unresolved { excursion: last })
 }
 
-/// What relative energy errors are relative to: `|E0|`, or for a scene with
-/// zero energy its kinetic energy scale, so the ratio stays finite.
-pub fn energy_norm<S: Scene<D>, const D: usize>(scene: &S) -> f64 {
-    let e0 = scene.energy(&scene.initial());
-    if e0 != 0.0 {
-        e0.abs()
-    } else {
-        0.5 * (scene.frequency() * scene.scale()).powi(2)
-    }
-}
+pub use crate::scene::energy_norm;
 
 /// Samples of the running maximum kept for the fit and for figures,
 /// log-spaced in time.
@@ -258,6 +250,12 @@ pub struct EnergyRecord {
     pub reason: String,
     /// What was measured, without the verdict.
     pub summary: String,
+    /// The run stopped on a defect of the step (a panic, or a stop where a
+    /// coarser step ran the same span cleanly; see
+    /// [`crate::study::breakdown`]): the verdict fails on it, and no finer
+    /// step is tried.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub breakdown: Option<Breakdown>,
     /// `(t, running maximum)` at log-spaced times.
     pub samples: Vec<[f64; 2]>,
 }
@@ -278,7 +276,8 @@ pub fn energy_drift<M: Scheme, S: Scene<D>, const D: usize>(
         None => (DEFAULT_STEP * scene.period(), StepChoice::Given),
     };
     let first = energy_at(scheme, scene, h, choice, periods)?;
-    if spec.h.is_some() || !conserves || first.verdict != Verdict::Fail {
+    if spec.h.is_some() || !conserves || first.verdict != Verdict::Fail || first.breakdown.is_some()
+    {
         return Ok(first);
     }
     // A conservation claim refuted at the first step that resolves the
@@ -405,8 +404,56 @@ fn energy_at<M: Scheme, S: Scene<D>, const D: usize>(
     let class = trace.class(lost_at, growth.exponent);
     let claims = Claims::of(meta.symplectic, meta.symmetric);
     let measured = trace.describe(lost_at, class, growth.exponent);
-    let (verdict, reason) = claims.judge(&trace, lost_at, class, growth.exponent, &measured);
-    let (verdict, reason) = at_chosen_step(claims.conserves, verdict, reason, &measured, h, choice);
+    let (mut verdict, mut reason) =
+        claims.judge(&trace, lost_at, class, growth.exponent, &measured);
+    // A run that stopped before its orbit was lost: instability at this
+    // step, or a defect of the step (see `breakdown.rs`), which fails
+    // whatever the claims.
+    let stopped = (!trace.outcome.completed())
+        .then(|| probe(scheme, scene, &scene.initial(), h, &trace.outcome));
+    if let Some(p) = &stopped {
+        let finding = p.describe(h, &trace.outcome);
+        (verdict, reason) = match p {
+            _ if p.is_defect() => (verdict, reason),
+            // Past the linear stability limit even an area-preserving map
+            // grows exponentially: instability, whatever the energy did on
+            // the way. Within it, an orbit lost before the stop drifted (a
+            // finer step would drift less, so a probe cannot tell drift from
+            // instability there), and that verdict stands.
+            Probe::Unstable { limit: Some(_), .. } if claims.conserves => (
+                Verdict::Inconclusive,
+                format!(
+                    "{finding}: {} conserves energy only at steps where it is stable; take a \
+                     smaller step (EnergySpec::h)",
+                    claims.name
+                ),
+            ),
+            _ if claims.conserves && lost_at.is_some() => (verdict, reason),
+            Probe::Unstable { .. } if claims.conserves => (
+                Verdict::Inconclusive,
+                format!(
+                    "{finding}: {} conserves energy only at steps where it is stable; take a \
+                     smaller step (EnergySpec::h)",
+                    claims.name
+                ),
+            ),
+            _ if claims.conserves => (
+                Verdict::Inconclusive,
+                format!(
+                    "{finding}: no conservation law applies to a run that stops; check that \
+                     the scene's period is its shortest time scale"
+                ),
+            ),
+            _ => (verdict, format!("{reason} ({finding})")),
+        };
+    }
+    let (mut verdict, mut reason) =
+        at_chosen_step(claims.conserves, verdict, reason, &measured, h, choice);
+    let breakdown = stopped.as_ref().and_then(Probe::breakdown).cloned();
+    if let Some(b) = &breakdown {
+        verdict = Verdict::Fail;
+        reason = format!("the run did not complete: {}", b.describe());
+    }
     Ok(EnergyRecord {
         scheme: meta.id,
         scene: scene.meta().id,
@@ -426,6 +473,7 @@ fn energy_at<M: Scheme, S: Scene<D>, const D: usize>(
         verdict,
         reason,
         summary: measured,
+        breakdown,
         samples: trace.samples,
     })
 }
@@ -881,6 +929,7 @@ mod tests {
             verdict,
             reason,
             summary: measured,
+            breakdown: None,
             samples: Vec::new(),
         }
     }

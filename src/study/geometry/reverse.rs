@@ -7,6 +7,7 @@ use crate::run::{Outcome, integrate};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::state::State;
+use crate::study::breakdown::{Breakdown, Probe, probe};
 use crate::study::geometry::energy::MAX_HALVINGS;
 use crate::study::verdict::Verdict;
 use crate::tolerance::reverse_tolerance_ulps;
@@ -96,6 +97,11 @@ pub struct ReverseRecord {
     pub verdict: Verdict,
     /// Why, in one line.
     pub reason: String,
+    /// The trip stopped on a defect of the step (a panic, or a stop where a
+    /// coarser step ran the same span cleanly; see
+    /// [`crate::study::breakdown`]): the verdict fails on it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub breakdown: Option<Breakdown>,
 }
 
 /// Runs the round trip.
@@ -116,14 +122,35 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
     // first completed round trip.
     let mut h = h;
     let mut halvings = 0;
-    let (there, back, outcome) = loop {
-        let (there, back, outcome) = round_trip(scheme, scene, &start, h, steps);
-        if outcome.completed() || !meta.symmetric || halvings == MAX_HALVINGS {
-            break (there, back, outcome);
+    let first_h = h;
+    let (there, back, outcome, leg) = loop {
+        let (there, back, outcome, leg) = round_trip(scheme, scene, &start, h, steps);
+        if outcome.completed() || outcome.panicked() || !meta.symmetric || halvings == MAX_HALVINGS
+        {
+            break (there, back, outcome, leg);
         }
         h /= 2.0;
         halvings += 1;
     };
+    // A trip that stopped: instability at this step, or a defect (a panic,
+    // or a stop below a step that runs the same span cleanly). Halving has
+    // tried the finer steps of a symmetric claim; the probe tries the
+    // coarser ones too, from the original step.
+    let stopped = (!outcome.completed()).then(|| {
+        // the trip at the step asked for, whose stop the probe explains
+        let (first_stop, (leg_start, leg_h)) = if halvings > 0 && !outcome.panicked() {
+            let (_, _, stop, leg) = round_trip(scheme, scene, &start, first_h, steps);
+            (stop, leg)
+        } else {
+            (outcome.clone(), leg)
+        };
+        let probe = probe(scheme, scene, &leg_start, leg_h, &first_stop);
+        Stop {
+            finding: probe.describe(leg_h.abs(), &first_stop),
+            breakdown: probe.breakdown().cloned(),
+            unstable: matches!(probe, Probe::Unstable { .. }),
+        }
+    });
     let scale = scene.scale();
     let return_error = outcome
         .completed()
@@ -155,9 +182,10 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
         },
         h,
         &halved,
-        &outcome,
+        stopped.as_ref(),
     );
     Ok(ReverseRecord {
+        breakdown: stopped.and_then(|s| s.breakdown),
         scheme: meta.id,
         scene: scene.meta().id,
         h,
@@ -172,6 +200,16 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
         verdict,
         reason,
     })
+}
+
+/// What the runs at other steps made of a round trip that stopped.
+struct Stop {
+    /// The finding in words, with its figures.
+    finding: String,
+    /// A defect: a panic, or a stop below a step that runs cleanly.
+    breakdown: Option<Breakdown>,
+    /// Instability at the step: a finer one ran the same span.
+    unstable: bool,
 }
 
 /// The round-off a round trip may return with, and what it is made of
@@ -192,29 +230,39 @@ fn judge(
     allowance: Allowance,
     h: f64,
     halved: &str,
-    outcome: &Outcome,
+    stopped: Option<&Stop>,
 ) -> (Verdict, String) {
     let measured = return_ulps.is_some_and(|u| u <= allowance.ulps);
     let (steps, growth) = (allowance.steps as f64, allowance.growth.max(1.0));
-    match (return_ulps, claimed_symmetric) {
-        (None, true) => (
+    match (return_ulps, claimed_symmetric, stopped) {
+        // a defect of the step fails whatever is claimed
+        (None, _, Some(stop)) if stop.breakdown.is_some() => (
+            Verdict::Fail,
+            format!("the round trip did not complete: {}", stop.finding),
+        ),
+        (None, true, stop) => (
             Verdict::Inconclusive,
             format!(
-                "the round trip did not complete ({}) at any step down to h = {} ({MAX_HALVINGS} halvings): a \
-                 time-symmetric scheme returns only from stable steps; take a smaller step \
-                 (ReverseSpec::h)",
-                outcome.brief(),
-                figure(h)
+                "the round trip did not complete at any step down to h = {} ({MAX_HALVINGS} \
+                 halvings): {}; a time-symmetric scheme returns only from steps it runs \
+                 cleanly, and the scene gave none here",
+                figure(h),
+                stop.map_or("", |s| s.finding.as_str()),
             ),
         ),
-        (None, false) => (
+        (None, false, stop) => (
             Verdict::Pass,
             format!(
-                "the round trip did not complete ({}): not time-symmetric, as claimed",
-                outcome.brief()
+                "the round trip did not complete ({}): not time-symmetric, as claimed{}",
+                stop.map_or("", |s| s.finding.as_str()),
+                if stop.is_some_and(|s| s.unstable) {
+                    ""
+                } else {
+                    " (and no step tried ran it cleanly)"
+                }
             ),
         ),
-        (Some(u), claimed) => {
+        (Some(u), claimed, _) => {
             let found = format!(
                 "return error in units of eps x scale {} ({} a step over {} steps there and \
                  back, magnified {} times by the flow){halved}",
@@ -249,21 +297,23 @@ fn judge(
 }
 
 /// `steps` steps with `h` from `start`, then as many with `-h` from where
-/// they ended: the end state, the state returned to and how the trip ended.
+/// they ended: the end state, the state returned to, how the trip ended and
+/// the start and step of its last leg.
 fn round_trip<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
     start: &State<D>,
     h: f64,
     steps: u64,
-) -> (State<D>, State<D>, Outcome) {
+) -> (State<D>, State<D>, Outcome, (State<D>, f64)) {
     let mut there = *start;
     let mut outcome = integrate(scheme, scene, start, h, steps, |_, _, s| there = *s);
     let mut back = there;
-    if outcome.completed() {
-        outcome = integrate(scheme, scene, &there, -h, steps, |_, _, s| back = *s);
+    if !outcome.completed() {
+        return (there, back, outcome, (*start, h));
     }
-    (there, back, outcome)
+    outcome = integrate(scheme, scene, &there, -h, steps, |_, _, s| back = *s);
+    (there, back, outcome, (there, -h))
 }
 
 /// How much `steps` steps magnify a small perturbation of the start: the

@@ -3,6 +3,7 @@
 
 use crate::error::Error;
 use crate::maths::tangent::{residual_error_bound, symplectic_residual, tangent_map};
+use crate::run::caught;
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::state::State;
@@ -93,12 +94,29 @@ pub fn symplecticity<M: Scheme, S: Scene<D>, const D: usize>(
         None => vec![(0.0, scene.initial())],
     };
     let mut samples = Vec::new();
-    for &h in &steps {
+    // A panic in the step, or a non-finite map from a finite state on the
+    // orbit, is a defect of the step: one step of a bounded map cannot leave
+    // the numbers (see `breakdown.rs`). The first one found decides.
+    let mut defect: Option<String> = None;
+    'steps: for &h in &steps {
         for (time, s) in &states {
-            // a step that cannot be taken (an implicit solve failing) has no tangent map
-            let Ok((j, entry_error)) = tangent_map(scheme, scene, s, h) else {
-                continue;
+            let at = format!("h = {}, from the state at t = {}", figure(h), figure(*time));
+            let (j, entry_error) = match caught(|| tangent_map(scheme, scene, s, h)) {
+                Ok(Ok(map)) => map,
+                // a step that cannot be taken (an implicit solve failing) has no tangent map
+                Ok(Err(_)) => continue,
+                Err(message) => {
+                    defect = Some(format!("the step panicked at {at}: {message}"));
+                    break 'steps;
+                }
             };
+            if j.iter().any(|x| !x.is_finite()) {
+                defect = Some(format!(
+                    "the tangent map of one step at {at} is not finite: the step returned a \
+                     non-finite state from a finite one"
+                ));
+                break 'steps;
+            }
             samples.push(TangentSample {
                 h,
                 time: *time,
@@ -119,7 +137,12 @@ pub fn symplecticity<M: Scheme, S: Scene<D>, const D: usize>(
         .iter()
         .map(|s| s.symplectic_residual)
         .fold(0.0, f64::max);
-    let judged = judge(&samples, meta.symplectic);
+    let mut judged = judge(&samples, meta.symplectic);
+    if let Some(defect) = defect {
+        judged.verdict = Verdict::Fail;
+        judged.measured = false;
+        judged.reason = format!("breakdown: {defect}");
+    }
     Ok(SymplecticRecord {
         scheme: meta.id,
         scene: scene.meta().id,

@@ -332,6 +332,11 @@ fn ladder_end_note(
                                          refined between its resolved rungs"
             .to_string(),
         LadderEnd::Floor => "the ladder reached the round-off floor".to_string(),
+        LadderEnd::Breakdown => format!(
+            "the ladder stopped at a breakdown at h = {} = tau_p/{}",
+            short(finest),
+            short_ratio(peri.time_scale / finest)
+        ),
     }
 }
 

@@ -21,6 +21,7 @@
 //! between it and the failing scan point above.
 
 use crate::error::Error;
+use crate::run::guarded_step;
 use crate::scene::{Anharmonic, Scene, WellOrbit};
 use crate::scheme::Scheme;
 use crate::tolerance::{
@@ -339,7 +340,7 @@ fn run_orbit<M: Scheme>(scheme: &M, orbit: &WellOrbit, delta: f64, h: f64, t_obs
     for n in 1..=steps {
         out.steps = n;
         let t = n as f64 * h;
-        if scheme.step(orbit, &mut carry, h).is_err() {
+        if guarded_step(scheme, orbit, &mut carry, h).is_err() {
             out.crossed_at = Some(t);
             break;
         }

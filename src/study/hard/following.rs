@@ -35,6 +35,7 @@
 
 use crate::error::Error;
 use crate::maths::fit::{PowerLaw, power_law};
+use crate::run::guarded_step;
 use crate::scene::{Scaled, Scene, Separatrix};
 use crate::scheme::Scheme;
 use crate::study::accuracy::order::{
@@ -523,7 +524,7 @@ fn run_rung<M: Scheme, S: Scene<1>>(
     for n in 1..=max_steps {
         out.steps = n;
         let t = n as f64 * h;
-        if scheme.step(scene, &mut carry, h).is_err() {
+        if guarded_step(scheme, scene, &mut carry, h).is_err() {
             if !decided {
                 out.event = Event::Failed;
             }

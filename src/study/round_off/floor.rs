@@ -43,6 +43,7 @@
 use crate::error::Error;
 use crate::ladder::{check_count, steps_for};
 use crate::maths::fit::{PowerLaw, power_law};
+use crate::run::guarded_step;
 use crate::scene::{AnyScene, Scene, SceneVisitor};
 use crate::scheme::Scheme;
 use crate::scheme::compensated::{PairVisitor, paired_ids, visit_pair};
@@ -314,8 +315,8 @@ fn run_pair<P: Scheme, C: Scheme, S: Scene<D>, const D: usize>(
     let (mut ep, mut ec, mut d) = (0.0f64, 0.0f64, 0.0f64);
     let mut failed = (false, false);
     for n in 1..=steps {
-        failed.0 |= plain.step(scene, &mut p, h).is_err();
-        failed.1 |= compensated.step(scene, &mut c, h).is_err();
+        failed.0 |= guarded_step(plain, scene, &mut p, h).is_err();
+        failed.1 |= guarded_step(compensated, scene, &mut c, h).is_err();
         if n % stride == 0 || n == steps {
             let t = if n == steps { t_end } else { n as f64 * h };
             let exact = scene.exact(t).expect("checked before the ladder");

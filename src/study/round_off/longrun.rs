@@ -33,6 +33,7 @@
 use crate::error::Error;
 use crate::ladder::check_count;
 use crate::maths::fit::power_law;
+use crate::run::guarded_step;
 use crate::scene::{AnyScene, Harmonic, KeplerCircular, KeplerEccentric, Scene};
 use crate::scheme::Scheme;
 use crate::scheme::compensated::{PairVisitor, pair_ids, visit_pair};
@@ -204,9 +205,11 @@ pub fn longrun<M: Scheme, S: Conserved<D>, const D: usize>(
         let mut path = Vec::with_capacity(times.len());
         let mut next = times.iter().copied().peekable();
         for n in 1..=steps {
-            scheme
-                .step(scene, &mut carry, h)
-                .map_err(|_| Error::InvalidScene("a step failed in a long run".into()))?;
+            guarded_step(scheme, scene, &mut carry, h).map_err(|failure| {
+                Error::InvalidScene(format!(
+                    "step {n} of h = {h:e} failed in a long run: {failure}"
+                ))
+            })?;
             let s = scheme.state(&carry, h);
             let change = (scene.value(&s.q, &s.v, h) - q0) / q0.abs();
             max_relative_error = max_relative_error.max(change.abs());
