@@ -136,42 +136,18 @@ impl Outcome {
 
 impl std::fmt::Display for Outcome {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Outcome::Completed => write!(f, "completed"),
-            Outcome::Unstable {
-                h,
-                step,
-                time,
-                coordinate,
-                value,
-            } => {
-                write!(
-                    f,
-                    "{} at h = {}, step {step} (t = {}): {coordinate} = {}",
-                    if value.is_finite() {
-                        "unstable"
-                    } else {
-                        "not finite"
-                    },
-                    crate::wording::figure(*h),
-                    crate::wording::figure(*time),
-                    crate::wording::figure(*value)
-                )
-            }
-            Outcome::Failed {
-                h,
-                step,
-                time,
-                failure,
-            } => {
-                write!(
-                    f,
-                    "step {step} at h = {} failed (t = {}): {failure}",
-                    crate::wording::figure(*h),
-                    crate::wording::figure(*time)
-                )
-            }
-        }
+        let what = match self {
+            Outcome::Completed => return write!(f, "completed"),
+            Outcome::Unstable { value, .. } if value.is_finite() => "unstable",
+            Outcome::Unstable { .. } => "not finite",
+            Outcome::Failed { .. } => "failed",
+        };
+        write!(
+            f,
+            "{what} at h = {}, {}",
+            crate::wording::figure(self.h().unwrap_or(f64::NAN)),
+            self.where_and_why()
+        )
     }
 }
 

@@ -9,32 +9,20 @@
 
 use stepladder::prelude::*;
 
-/// Velocity Verlet on slices, as a user's crate might write it.
-fn velocity_verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
+/// Velocity Verlet on slices, as a user's crate might write it, in `f64`
+/// or `f32`.
+fn velocity_verlet<T: Real>(q: &mut [T], v: &mut [T], h: T, force: &Force<T>) {
     let n = q.len();
-    let mut a = [0.0; 2];
+    let half = h * T::of(0.5);
+    let mut a = [T::of(0.0); 2];
     force(q, &mut a[..n]);
     for i in 0..n {
-        v[i] += 0.5 * h * a[i];
+        v[i] += half * a[i];
         q[i] += h * v[i];
     }
     force(q, &mut a[..n]);
     for i in 0..n {
-        v[i] += 0.5 * h * a[i];
-    }
-}
-
-fn velocity_verlet_f32(q: &mut [f32], v: &mut [f32], h: f32, force: &Force<f32>) {
-    let n = q.len();
-    let mut a = [0.0; 2];
-    force(q, &mut a[..n]);
-    for i in 0..n {
-        v[i] += 0.5 * h * a[i];
-        q[i] += h * v[i];
-    }
-    force(q, &mut a[..n]);
-    for i in 0..n {
-        v[i] += 0.5 * h * a[i];
+        v[i] += half * a[i];
     }
 }
 
@@ -151,7 +139,7 @@ fn a_breakdown_in_single_precision_fails_too() {
     let step = BlackBox::new(
         VERLET,
         move |q: &mut [f32], v: &mut [f32], h: f32, force: &Force<f32>| {
-            velocity_verlet_f32(q, v, h, force);
+            velocity_verlet(q, v, h, force);
             if h.abs() < threshold {
                 v[1] = f32::NAN;
             }
@@ -283,7 +271,7 @@ fn correct_steps_are_not_called_broken() {
     // velocity Verlet through the same adapter, and the catalogue's
     // explicit Euler, whose coarse runs on the eccentric orbit blow up
     let e9 = KeplerEccentric::new(0.9).unwrap();
-    let verlet = BlackBox::new(VERLET, velocity_verlet);
+    let verlet = BlackBox::new(VERLET, velocity_verlet::<f64>);
     for r in [
         global_order(&verlet, &e9, &OrderSpec::default()).unwrap(),
         global_order(&Euler, &e9, &OrderSpec::default()).unwrap(),
@@ -390,4 +378,41 @@ fn an_adaptive_run_that_breaks_down_at_tight_tolerances_fails_its_exponent() {
         r.reason
     );
     assert_eq!(r.verdict, Verdict::Pass, "{}", r.reason);
+}
+
+/// Velocity Verlet written generically, with an overflow guard that answers
+/// NaN below `threshold`: the same defect in a scheme the studies can
+/// differentiate, on a scene of any dimension.
+struct GuardedVerlet {
+    threshold: f64,
+}
+
+impl OneStep for GuardedVerlet {
+    fn meta(&self) -> &SchemeMeta {
+        &VERLET
+    }
+
+    fn advance<R: Real, const D: usize, S: Scene<D>>(
+        &self,
+        scene: &S,
+        s: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        let half = R::of(0.5) * h;
+        s.v += scene.acceleration(&s.q) * half;
+        s.q += s.v * h;
+        s.v += scene.acceleration(&s.q) * half;
+        if h.abs() < R::of(self.threshold) {
+            s.v[D - 1] = R::of(f64::NAN);
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn a_breakdown_on_seven_bodies_fails_too() {
+    // 14 coordinates, no exact solution, close encounters at coarse steps
+    let stars = Pleiades::default();
+    let threshold = 1e-3 * stars.period();
+    fails_with_breakdown(&GuardedVerlet { threshold }, &stars, threshold);
 }

@@ -268,8 +268,10 @@ pub(crate) fn probe<M: Scheme, S: Scene<D>, const D: usize>(
         let finer = h / f64::from(1u32 << k);
         // completing the span is enough this way: instability needs no
         // resolved run to show that it shrinks with the step
-        match completes(scheme, scene, start, finer, steps_run << k) {
-            Ok(true) => {
+        match run_over(scheme, scene, start, finer, steps_run << k) {
+            Ok(ProbeRun {
+                completed: true, ..
+            }) => {
                 let z = h.abs() * scene.frequency();
                 return Probe::Unstable {
                     finer: finer.abs(),
@@ -282,7 +284,7 @@ pub(crate) fn probe<M: Scheme, S: Scene<D>, const D: usize>(
                         .filter(|&limit| limit > 0.0 && z > limit),
                 };
             }
-            Ok(false) => {}
+            Ok(_) => {}
             Err(p) => return panicked(steps_run << k, p),
         }
     }
@@ -290,14 +292,17 @@ pub(crate) fn probe<M: Scheme, S: Scene<D>, const D: usize>(
     let mut coarser = 2.0 * h;
     while coarser.abs() <= coarsest {
         let steps = ((span / coarser.abs()).ceil() as u64).max(PROBE_MIN_STEPS);
-        match resolved_over(scheme, scene, start, coarser, steps) {
-            Ok(Some(error)) => {
+        match run_over(scheme, scene, start, coarser, steps) {
+            Ok(ProbeRun {
+                resolved: Some(error),
+                ..
+            }) => {
                 let mut b = broken("the run");
                 b.clean_h = Some(coarser.abs());
                 b.clean_error = Some(error);
                 return Probe::Breakdown(b);
             }
-            Ok(None) => {}
+            Ok(_) => {}
             Err(p) => return panicked(steps, p),
         }
         coarser *= 2.0;
@@ -310,34 +315,24 @@ pub(crate) fn probe<M: Scheme, S: Scene<D>, const D: usize>(
     }
 }
 
-/// Runs `steps` steps of `h` from `start`: whether it completed; the outcome
-/// of a run that panicked as the error.
-fn completes<M: Scheme, S: Scene<D>, const D: usize>(
-    scheme: &M,
-    scene: &S,
-    start: &State<D>,
-    h: f64,
-    steps: u64,
-) -> Result<bool, Outcome> {
-    let outcome = integrate(scheme, scene, start, h, steps, |_, _, _| {});
-    if outcome.panicked() {
-        return Err(outcome);
-    }
-    Ok(outcome.completed())
+/// How a probe's run went: whether it completed, and the largest error it
+/// made when that is within [`ERROR_CEILING`] (it resolved the motion).
+struct ProbeRun {
+    completed: bool,
+    resolved: Option<f64>,
 }
 
-/// Runs `steps` steps of `h` from `start`; the largest error it made, as a
-/// fraction (of the orbit against the exact solution where the scene has
-/// one and the run starts on it, and of the energy always), when the run
-/// completed within [`ERROR_CEILING`] of both, else `None`; the outcome of
-/// a run that panicked as the error.
-fn resolved_over<M: Scheme, S: Scene<D>, const D: usize>(
+/// Runs `steps` steps of `h` from `start`, its error measured as a fraction
+/// (of the orbit against the exact solution where the scene has one and the
+/// run starts on it, and of the energy always); the outcome of a run that
+/// panicked as the error.
+fn run_over<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
     start: &State<D>,
     h: f64,
     steps: u64,
-) -> Result<Option<f64>, Outcome> {
+) -> Result<ProbeRun, Outcome> {
     let (e0, norm, scale) = (scene.energy(start), energy_norm(scene), scene.scale());
     let on_exact = scene.exact(0.0).is_some_and(|s| s == *start);
     let mut worst = 0.0f64;
@@ -360,5 +355,8 @@ fn resolved_over<M: Scheme, S: Scene<D>, const D: usize>(
     if outcome.panicked() {
         return Err(outcome);
     }
-    Ok((outcome.completed() && worst <= ERROR_CEILING).then_some(worst))
+    Ok(ProbeRun {
+        completed: outcome.completed(),
+        resolved: (outcome.completed() && worst <= ERROR_CEILING).then_some(worst),
+    })
 }
