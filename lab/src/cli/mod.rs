@@ -276,7 +276,11 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 exact(r.h),
                 r.steps,
                 r.max_relative_energy_error,
-                r.growth_exponent.map_or("-".into(), |g| format!("{g:.3}")),
+                // a run that stopped has no growth law, whatever a fit to
+                // its few samples gives
+                r.growth_exponent
+                    .filter(|_| r.outcome.completed())
+                    .map_or("-".into(), |g| format!("{g:.3}")),
                 r.reason
             );
             emit(a.case.json, &r, &text, r.verdict)

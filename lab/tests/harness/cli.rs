@@ -193,6 +193,28 @@ fn a_verdict_that_is_not_a_pass_exits_with_status_1() {
 
 /// An unwritable path is refused before the suite runs (at once, not after
 /// a minute of work), with exit status 2 and nothing written or printed.
+/// `h w0 = 7` is past leap-frog's stability limit 2: the run stops at its
+/// fourth step, and the line says why, with no growth law of three steps
+/// and no drift blamed.
+#[test]
+fn a_step_past_the_stability_limit_is_said_to_be_so() {
+    let out = run(&[
+        "energy", "--scheme", "leapfrog", "--scene", "harmonic", "--h", "7",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    for needle in [
+        "INCONCLUSIVE",
+        "h = 7, 3 steps",
+        "g = -,",
+        "at step 4",
+        "h w = 7.00 is past the scheme's linear stability limit h w = 2.00",
+    ] {
+        assert!(text.contains(needle), "{needle:?} not in {text}");
+    }
+    assert!(!text.contains("drift"), "{text}");
+}
+
 #[test]
 fn report_refuses_an_unwritable_path_at_once() {
     let missing = std::env::temp_dir().join(format!(
