@@ -35,7 +35,7 @@
 //!    run, while a clean coarser run must have resolved the motion to rule
 //!    out an island of stability).
 //!
-//! Single-step studies (energy, round trip) have no ladder; [`probe`] runs
+//! Single-step studies (energy, round trip) have no ladder; `probe` runs
 //! the same span at finer and then at coarser steps to find out which case
 //! a stopped run is.
 
