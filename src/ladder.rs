@@ -286,4 +286,25 @@ mod tests {
             Err(Error::TooExpensive { .. })
         ));
     }
+
+    /// A refused count is stated as it was reckoned, with the time it would
+    /// take at the stated rate: 4e9 steps at 3e-8 s a step is 120 s.
+    #[test]
+    fn a_refused_count_states_its_steps_and_time() {
+        assert_eq!(SECONDS_PER_STEP, 3e-8);
+        match check_count(4e9) {
+            Err(Error::TooExpensive {
+                steps,
+                limit,
+                seconds,
+            }) => {
+                assert_eq!((steps, limit), (4e9, MAX_TOTAL_STEPS));
+                assert!((seconds - 120.0).abs() < 1e-9, "{seconds}");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(check_count(MAX_TOTAL_STEPS as f64).is_ok());
+        assert!(check_count(f64::NAN).is_err());
+        assert!(check_count(-1.0).is_err());
+    }
 }

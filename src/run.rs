@@ -265,3 +265,33 @@ pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, String> {
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Harmonic;
+    use crate::scheme::Leapfrog;
+
+    /// Leap-frog at `h w0 = 7` multiplies the oscillator's amplitude by the
+    /// larger root of `l^2 - (2 - 49) l + 1`, `|l| = 46.98`, each step: the
+    /// state leaves a million times the orbit at the first `n` with
+    /// `47^n > 1e6` (`47^3 = 1.0e5`, `47^4 = 4.9e6`; the prefactor would have
+    /// to be off by ten to move it), so the run stops at step 4.
+    #[test]
+    fn an_unstable_run_stops_where_the_growth_says_and_says_so() {
+        let scene = Harmonic::default();
+        let h = 7.0 / scene.frequency();
+        let outcome = integrate(&Leapfrog, &scene, &scene.initial(), h, 100, |_, _, _| {});
+        assert!(matches!(outcome, Outcome::Unstable { .. }), "{outcome:?}");
+        assert_eq!(outcome.step(), Some(4), "{outcome:?}");
+        assert_eq!(outcome.h(), Some(h));
+        assert!(!outcome.completed() && !outcome.panicked());
+        assert!(
+            outcome.where_and_why().starts_with("step 4 "),
+            "{}",
+            outcome.where_and_why()
+        );
+        let calm = integrate(&Leapfrog, &scene, &scene.initial(), 0.1, 100, |_, _, _| {});
+        assert_eq!((calm.step(), calm.h()), (None, None));
+    }
+}
