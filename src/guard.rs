@@ -22,15 +22,22 @@ use crate::study::cost::evaluations::{EvaluationRecord, counting_step, evaluatio
 use crate::study::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
 use crate::study::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
 use crate::study::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
-use crate::study::verdict::Verdict;
+use crate::study::{ClaimVerdict, ClaimsRecord, claims};
+
+/// Panics with the claim's message if its verdict fails a guard: a
+/// refutation or an inconclusive measurement, never a claim not made (the
+/// rule and its argument: [`crate::study::Verdict::fails_a_guard`]).
+fn hold(verdict: ClaimVerdict) {
+    if let Some(message) = verdict.failure() {
+        panic!("{message}");
+    }
+}
 
 /// Measures the global order with the automatic ladder; panics unless it
 /// agrees with `scheme.meta().order`.
 pub fn assert_order<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> OrderRecord {
     let record = study(global_order(scheme, scene, &OrderSpec::default()));
-    if let Some(message) = order_failure(&record) {
-        panic!("{message}");
-    }
+    hold((&record).into());
     record
 }
 
@@ -41,9 +48,7 @@ pub fn assert_symplectic<M: Scheme, S: Scene<D>, const D: usize>(
     scene: &S,
 ) -> SymplecticRecord {
     let record = study(symplecticity(scheme, scene, &SymplecticSpec::default()));
-    if let Some(message) = symplectic_failure(&record) {
-        panic!("{message}");
-    }
+    hold((&record).into());
     record
 }
 
@@ -54,9 +59,7 @@ pub fn assert_reversible<M: Scheme, S: Scene<D>, const D: usize>(
     scene: &S,
 ) -> ReverseRecord {
     let record = study(reversibility(scheme, scene, &ReverseSpec::default()));
-    if let Some(message) = reverse_failure(&record) {
-        panic!("{message}");
-    }
+    hold((&record).into());
     record
 }
 
@@ -67,24 +70,20 @@ pub fn assert_energy<M: Scheme, S: Scene<D>, const D: usize>(
     scene: &S,
 ) -> EnergyRecord {
     let record = study(energy_drift(scheme, scene, &EnergySpec::default()));
-    if let Some(message) = energy_failure(&record) {
-        panic!("{message}");
-    }
+    hold((&record).into());
     record
 }
 
 /// Counts the force calls a step makes; panics unless they equal
 /// `scheme.meta().force_evaluations` per step (an implicit scheme's count
-/// is checked against what its solves report, and an implicit black box's
-/// is shown, not judged: its iterations are its own).
+/// is checked against what its solves report; an implicit black box that
+/// reports none makes no count to check, and is shown, not judged).
 pub fn assert_evaluations<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
     scene: &S,
 ) -> EvaluationRecord {
     let record = evaluations(scheme, scene, counting_step(scene));
-    if let Some(message) = evaluation_refuted(&record) {
-        panic!("{message}");
-    }
+    hold((&record).into());
     record
 }
 
@@ -94,48 +93,34 @@ pub fn assert_evaluations<M: Scheme, S: Scene<D>, const D: usize>(
 /// the accepted steps grow no faster than that controller allows, what it
 /// reports it spent equal the calls counted on its force callback, and
 /// energy and round trip agree with its symplecticity and symmetry claims.
-/// Panics with the figures unless every claim holds.
+/// Panics with the figures unless every claim holds
+/// ([`ToleranceLadderRecord::verdicts`]).
 pub fn assert_adaptive<I, S, const D: usize>(integrator: &I, scene: &S) -> ToleranceLadderRecord
 where
     I: crate::study::adaptive::AdaptiveIntegrator,
     S: Scene<D>,
 {
     let record = adaptive_ladder(integrator, scene);
-    if record.verdict != Verdict::Pass {
-        panic!(
-            "stepladder: adaptive `{}` on `{}`: {} ({}): {}",
-            record.integrator,
-            record.scene,
-            record.verdict.name(),
-            ladder_points(&record),
-            record.reason
-        );
-    }
+    let verdicts = record.verdicts();
+    let failures: Vec<&str> = verdicts.iter().filter_map(ClaimVerdict::failure).collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
     record
 }
 
 /// Panics unless `claim` holds in an adaptive integrator's tolerance ladder
 /// (`record`, from [`adaptive_ladder`]): the failure names the claim, its
-/// figures and the ladder's points. A claim with nothing to judge (an error
-/// factor not stated, evaluations not reported) holds.
+/// figures and the ladder's points. A claim the integrator does not make
+/// (an error factor not stated, evaluations not reported) holds.
 pub fn assert_adaptive_claim(
     record: &ToleranceLadderRecord,
     claim: crate::study::adaptive::AdaptiveClaim,
 ) {
-    let Some(judged) = record.claim(claim) else {
-        return;
-    };
-    if judged.verdict != Verdict::Pass {
-        panic!(
-            "stepladder: adaptive `{}` on `{}`: {} {}: {} (ladder: {})",
-            record.integrator,
-            record.scene,
-            claim.name(),
-            judged.verdict.name(),
-            judged.reason,
-            ladder_points(record)
-        );
-    }
+    let verdicts = record.verdicts();
+    let position = crate::study::adaptive::AdaptiveClaim::ALL
+        .iter()
+        .position(|&c| c == claim)
+        .expect("every claim is in ALL");
+    hold(verdicts[position].clone());
 }
 
 /// The tolerance ladder [`assert_adaptive`] and [`guard_adaptive!`](crate::guard_adaptive!) judge,
@@ -150,23 +135,6 @@ where
         scene,
         &ToleranceLadderSpec::default(),
     ))
-}
-
-/// Each tolerance's steps and error, for a failure message.
-fn ladder_points(record: &ToleranceLadderRecord) -> String {
-    record
-        .points
-        .iter()
-        .map(|p| {
-            format!(
-                "TOL {:.0e}: {} steps, error {}",
-                p.tolerance,
-                p.accepted,
-                p.error.map_or("-".into(), |e| format!("{e:.2e}"))
-            )
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// Checks an adaptive integrator's error at its pinned tolerance against
@@ -200,150 +168,20 @@ pub fn assert_pinned<M: Scheme, S: Scene<D>, const D: usize>(
     check_pin(scheme, scene, dir.as_ref()).unwrap_or_else(|message| panic!("{message}"))
 }
 
-/// Every guard above; panics once, listing every claim that failed.
-pub fn assert_claims<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) {
-    let failures: Vec<String> = [
-        order_failure(&study(global_order(scheme, scene, &OrderSpec::default()))),
-        symplectic_failure(&study(symplecticity(
-            scheme,
-            scene,
-            &SymplecticSpec::default(),
-        ))),
-        reverse_failure(&study(reversibility(
-            scheme,
-            scene,
-            &ReverseSpec::default(),
-        ))),
-        energy_failure(&study(energy_drift(scheme, scene, &EnergySpec::default()))),
-        evaluation_refuted(&evaluations(scheme, scene, counting_step(scene))),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+/// Every claim at once ([`crate::study::claims()`]); panics once, listing
+/// every claim that fails its guard, and otherwise returns the record.
+pub fn assert_claims<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+) -> ClaimsRecord {
+    let record = study(claims(scheme, scene));
+    assert!(record.passed(), "{}", record.failures().join("\n"));
+    record
 }
 
 /// A study that could not even run is a failure of the guard's setup.
 fn study<T>(result: Result<T, crate::error::Error>) -> T {
     result.unwrap_or_else(|e| panic!("stepladder: the study could not run: {e}"))
-}
-
-/// The failure message of an order record, or `None` if it passed.
-pub fn order_failure(r: &OrderRecord) -> Option<String> {
-    use crate::wording::{figure, order};
-    (r.verdict != Verdict::Pass).then(|| {
-        let ladder = match (r.rungs.first(), r.rungs.last()) {
-            (Some(a), Some(b)) => {
-                format!("{} rungs, h = {} .. {}", r.rungs.len(), figure(a.h), figure(b.h))
-            }
-            _ => "no rungs".to_string(),
-        };
-        format!(
-            "stepladder: `{}` on `{}`: {} order {} claimed, measured {} in {} over rungs {}; ladder {ladder} to t_end = {}: {}{}",
-            r.scheme,
-            r.scene,
-            r.verdict.name(),
-            r.theoretical_order,
-            r.measured_order.map_or("nothing".into(), order),
-            r.ci95.map_or("no interval".into(), |c| format!("[{}, {}]", order(c[0]), order(c[1]))),
-            r.window.map_or("none".into(), |[a, b]| format!("{a}..{b}")),
-            figure(r.t_end),
-            r.reason,
-            r.advice.as_ref().map_or(String::new(), |a| format!("; to decide: {a}"))
-        ) + &solves_beside_errors(&r.rungs)
-    })
-}
-
-/// For a scheme that reports its solves: the iterations per step and the
-/// largest residual beside the error at the coarsest and the finest rungs
-/// measured, so that a floor set by the solve's own tolerance shows where
-/// it comes from. Empty for a scheme that reports none.
-fn solves_beside_errors(rungs: &[crate::study::accuracy::rung::Rung]) -> String {
-    use crate::wording::figure;
-    let reported: Vec<(f64, f64, crate::scheme::SolveTally)> = rungs
-        .iter()
-        .filter_map(|g| Some((g.h, g.error.or(g.half_step_difference)?, g.solve?)))
-        .collect();
-    let one = |&(h, error, tally): &(f64, f64, crate::scheme::SolveTally)| {
-        format!(
-            "at h = {}, error {}: {:.1} iterations a step, largest residual {}",
-            figure(h),
-            figure(error),
-            tally.iterations_per_step(),
-            figure(tally.largest_residual)
-        )
-    };
-    match reported.as_slice() {
-        [] => String::new(),
-        [only] => format!("; its solves {}", one(only)),
-        [first, .., last] => format!("; its solves {}; {}", one(first), one(last)),
-    }
-}
-
-/// The failure message of a symplecticity record, or `None` if it passed.
-pub fn symplectic_failure(r: &SymplecticRecord) -> Option<String> {
-    (r.verdict != Verdict::Pass).then(|| {
-        format!(
-            "stepladder: `{}` on `{}`: symplectic claimed {}, {}: {}",
-            r.scheme,
-            r.scene,
-            r.claimed,
-            r.verdict.name(),
-            r.reason,
-        )
-    })
-}
-
-/// The failure message of a reversibility record, or `None` if it passed.
-pub fn reverse_failure(r: &ReverseRecord) -> Option<String> {
-    (r.verdict != Verdict::Pass).then(|| {
-        format!(
-            "stepladder: `{}` on `{}`: time-symmetric claimed {}, {}: {} steps of h = {} and back: {}",
-            r.scheme,
-            r.scene,
-            r.claimed,
-            r.verdict.name(),
-            r.steps,
-            crate::wording::figure(r.h),
-            r.reason
-        )
-    })
-}
-
-/// The failure message of an energy record, or `None` if it passed.
-pub fn energy_failure(r: &EnergyRecord) -> Option<String> {
-    (r.verdict != Verdict::Pass).then(|| {
-        format!(
-            "stepladder: `{}` on `{}`: energy expected {}, {} over {} steps of h = {}: {}",
-            r.scheme,
-            r.scene,
-            r.expected.name(),
-            r.verdict.name(),
-            r.steps,
-            crate::wording::figure(r.h),
-            r.reason
-        )
-    })
-}
-
-/// The failure message of an evaluation count, or `None` if it passed.
-pub fn evaluation_failure(r: &EvaluationRecord) -> Option<String> {
-    (r.verdict != Verdict::Pass).then(|| {
-        format!(
-            "stepladder: `{}` on `{}`: {} force-evaluation claim: {}",
-            r.scheme,
-            r.scene,
-            r.verdict.name(),
-            r.reason
-        )
-    })
-}
-
-/// The message of a refuted evaluation count: the guards fail on it alone,
-/// since an implicit black box's count is inconclusive by construction (its
-/// iterations are its own).
-fn evaluation_refuted(r: &EvaluationRecord) -> Option<String> {
-    evaluation_failure(r).filter(|_| r.verdict == Verdict::Fail)
 }
 
 /// One `#[test]` per claim, per scheme and scene: `order`, `symplectic`,

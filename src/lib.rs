@@ -9,6 +9,8 @@
 //!
 //! ```
 //! use stepladder::prelude::*;
+//! use stepladder::scheme::{Leapfrog, VELOCITY_VERLET};
+//! use stepladder::study::{OrderSpec, global_order};
 //!
 //! // the global order with its 95% interval, against the claimed 2
 //! let record = global_order(&Leapfrog, &KeplerCircular, &OrderSpec::default())?;
@@ -40,7 +42,8 @@
 //! - [`guard`]: one-line assertions of a scheme's claims for a test, with the
 //!   deciding figures in the failure message; [`guard_claims!`] and
 //!   [`guard_adaptive!`] write one `#[test]` per claim, with a pinned error;
-//! - [`prelude`]: all of the above that a test needs, in one `use`.
+//! - [`prelude`]: the thirty names a test that guards an integrator needs,
+//!   in one `use`.
 //!
 //! The catalogue (claimed global order; every scheme here is measured
 //! against its claim on every scene):

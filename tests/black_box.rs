@@ -6,6 +6,10 @@
 //! claims must pass, a false symplecticity claim must fail.
 
 use stepladder::prelude::*;
+use stepladder::scene::Anharmonic;
+use stepladder::study::{
+    OrderSpec, ReverseSpec, SymplecticSpec, evaluations, global_order, reversibility, symplecticity,
+};
 
 fn velocity_verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
     let n = q.len();
@@ -298,10 +302,12 @@ fn an_implicit_black_box_is_charged_what_its_solves_report() {
     let r = evaluations(&silent, &scene, 0.01);
     assert_eq!(
         (r.reported_per_step, r.verdict),
-        (None, Verdict::Inconclusive),
+        (None, Verdict::NotClaimed),
         "{}",
         r.reason
     );
+    // a claim not made passes its guard (the rule: Verdict::fails_a_guard)
+    stepladder::guard::assert_evaluations(&silent, &scene);
     let order = global_order(&silent, &scene, &OrderSpec::default()).unwrap();
     assert!(order.rungs.iter().all(|g| g.solve.is_none()));
     let r = evaluations(&extra, &scene, 0.01);
@@ -335,7 +341,8 @@ fn a_solve_stopped_at_a_fixed_tolerance_shows_its_residual_beside_the_error() {
     );
     let record = global_order(&loose, &Harmonic::default(), &OrderSpec::default()).unwrap();
     assert_ne!(record.verdict, Verdict::Pass, "{}", record.reason);
-    let message = stepladder::guard::order_failure(&record).expect("not a pass");
+    let judged = stepladder::study::ClaimVerdict::from(&record);
+    let message = judged.failure().expect("fails its guard");
     assert!(
         message.contains("iterations a step, largest residual"),
         "{message}"

@@ -8,6 +8,12 @@
 //! called broken.
 
 use stepladder::prelude::*;
+use stepladder::scene::{Anharmonic, Pleiades};
+use stepladder::scheme::{Euler, Leapfrog};
+use stepladder::study::{
+    AdaptiveClaim, Advance, DropReason, EnergySpec, OrderSpec, ReverseSpec, SymplecticSpec,
+    energy_drift, evaluations, global_order, reversibility, symplecticity,
+};
 
 /// Velocity Verlet on slices, as a user's crate might write it, in `f64`
 /// or `f32`.

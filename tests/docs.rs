@@ -88,3 +88,37 @@ fn the_table_reader_sees_a_wrong_row() {
     assert_eq!(rows, vec![vec!["euler", "2", "explicit Euler"]]);
     assert_ne!(rows[0][1], catalogue()[0].order.to_string());
 }
+
+/// The prelude is a list a reader can take in at once: at most thirty names,
+/// each written out (no glob, no module), so that `use
+/// stepladder::prelude::*` brings nothing the list does not show.
+#[test]
+fn the_prelude_lists_at_most_thirty_names_by_hand() {
+    let source = include_str!("../src/prelude.rs");
+    let code: String = source
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let mut names = Vec::new();
+    for statement in code.split(';').filter(|s| s.contains("pub use")) {
+        let list = statement
+            .rsplit_once("::")
+            .map_or(statement, |(_, tail)| tail);
+        for name in list.split([',', '{', '}']).map(str::trim) {
+            if !name.is_empty() {
+                names.push(name.to_string());
+            }
+        }
+    }
+    assert!(!names.is_empty(), "no names found in src/prelude.rs");
+    assert!(
+        names.iter().all(|n| n != "*" && n != "self"),
+        "a glob or a module in the prelude: {names:?}"
+    );
+    assert!(names.len() <= 30, "{} names: {names:?}", names.len());
+    let mut unique = names.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), names.len(), "a name listed twice: {names:?}");
+}

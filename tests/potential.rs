@@ -5,7 +5,9 @@
 
 use std::f64::consts::PI;
 use stepladder::maths::tangent::acceleration_jacobian;
+use stepladder::nalgebra::SVector;
 use stepladder::prelude::*;
+use stepladder::scene::SceneMeta;
 
 /// The eccentric orbit again, given by its potential alone.
 #[derive(Clone, Copy)]

@@ -27,6 +27,7 @@ fn verdict(v: Verdict) -> &'static str {
         Verdict::Pass => "holds",
         Verdict::Fail => "**refuted**",
         Verdict::Inconclusive => "inconclusive",
+        Verdict::NotClaimed => "not claimed",
     }
 }
 
@@ -86,7 +87,7 @@ fn cell(p: &Provenance, prop: Prop, v: Verdict, measured: &str) -> String {
     match v {
         Verdict::Pass => format!("not claimed: {measured}"),
         Verdict::Fail => format!("not claimed: **{measured}** (finding)"),
-        Verdict::Inconclusive => "not claimed: not judged".to_string(),
+        Verdict::Inconclusive | Verdict::NotClaimed => "not claimed: not judged".to_string(),
     }
 }
 

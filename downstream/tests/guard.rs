@@ -20,7 +20,11 @@ use differential_equations::ode::OrdinaryNumericalMethod;
 use differential_equations::prelude::{HamiltonianSystem, ODE, Status};
 use ode_solvers::dop_shared::FloatNumber;
 use ode_solvers::{Dop853, Dopri5, OutputType, Rk4, System};
+use stepladder::nalgebra::{SVector, Vector1};
 use stepladder::prelude::*;
+use stepladder::scene::SceneMeta;
+use stepladder::scheme::{BlackBoxStep, Float, Hamiltonian, Rhs, VectorForce};
+use stepladder::study::{Advance, AdvanceFn, OrderSpec, RunEnd, global_order};
 use utsuroi::{DynamicalSystem, StormerVerlet, Yoshida4};
 
 /// Claims shared by the tables below: explicit methods whose symplectic

@@ -22,6 +22,7 @@
 //! | force evaluations against error | [`scheme_work`] | | [`SchemeWork`] |
 //! | an adaptive integrator over tolerances | [`tolerance_ladder()`] | [`ToleranceLadderSpec`] | [`ToleranceLadderRecord`] |
 //! | a scene's exact solution | [`check_scene`] | | [`SceneCheck`] |
+//! | every claim of a scheme at once | [`fn@claims`] | | [`ClaimsRecord`] |
 //!
 //! and the pins, which hold a coarse-step error to its round-off between
 //! versions: [`check_pin`] and [`check_adaptive_pin`].
@@ -34,6 +35,7 @@ pub mod adaptive;
 pub mod breakdown;
 #[doc(hidden)]
 pub mod case;
+mod claims;
 #[doc(hidden)]
 pub mod cost;
 #[doc(hidden)]
@@ -75,4 +77,5 @@ pub use round_off::longrun::{LongrunRecord, LongrunSpec, longrun};
 pub use stability::{StabilityRecord, stability};
 
 pub use breakdown::Breakdown;
+pub use claims::{ClaimVerdict, ClaimsRecord, claims};
 pub use verdict::Verdict;

@@ -287,23 +287,17 @@ pub fn judge(entry: &Entry) -> Result<Outcome, stepladder::error::Error> {
     let symplectic = c.symplectic(&SymplecticSpec::default())?;
     let reverse = c.reverse(&ReverseSpec::default())?;
     let evaluations = c.evaluations();
-    use stepladder::guard::{
-        energy_failure, evaluation_failure, order_failure, reverse_failure, symplectic_failure,
+    use stepladder::study::ClaimVerdict;
+    let judged = |v: ClaimVerdict, reason: String| {
+        let message = v.failure().map(str::to_string);
+        (v.verdict, message, reason)
     };
     let verdicts = [
-        (order.verdict, order_failure(&order), order.reason),
-        (energy.verdict, energy_failure(&energy), energy.reason),
-        (
-            symplectic.verdict,
-            symplectic_failure(&symplectic),
-            symplectic.reason,
-        ),
-        (reverse.verdict, reverse_failure(&reverse), reverse.reason),
-        (
-            evaluations.verdict,
-            evaluation_failure(&evaluations),
-            evaluations.reason,
-        ),
+        judged((&order).into(), order.reason.clone()),
+        judged((&energy).into(), energy.reason.clone()),
+        judged((&symplectic).into(), symplectic.reason.clone()),
+        judged((&reverse).into(), reverse.reason.clone()),
+        judged((&evaluations).into(), evaluations.reason.clone()),
     ];
     let scene = c.scene();
     Ok(Outcome {

@@ -166,6 +166,16 @@ pub enum AdaptiveClaim {
 }
 
 impl AdaptiveClaim {
+    /// Every claim, in the order the ladder judges them.
+    pub const ALL: [AdaptiveClaim; 6] = [
+        AdaptiveClaim::Exponent,
+        AdaptiveClaim::ErrorFactor,
+        AdaptiveClaim::Cost,
+        AdaptiveClaim::Evaluations,
+        AdaptiveClaim::Energy,
+        AdaptiveClaim::RoundTrip,
+    ];
+
     /// Its name in test names and messages.
     pub fn name(self) -> &'static str {
         match self {

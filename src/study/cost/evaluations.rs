@@ -46,8 +46,10 @@ pub struct EvaluationRecord {
     /// What an implicit scheme's solves report they spent per step over
     /// the same steps; `None` for an explicit scheme or a black box.
     pub reported_per_step: Option<f64>,
-    /// Pass, fail, or inconclusive (an implicit black box, or a run that
-    /// could not be completed).
+    /// Pass or fail; inconclusive when the counting run did not complete
+    /// for want of stability; not claimed for an implicit scheme that does
+    /// not report its solves (its count per iteration has nothing to be
+    /// checked against).
     pub verdict: Verdict,
     /// Why, with the figures.
     pub reason: String,
@@ -118,6 +120,7 @@ pub fn evaluations<M: Scheme, S: Scene<D>, const D: usize>(
                 };
             }
             _ => {
+                record.verdict = Verdict::NotClaimed;
                 record.reason = format!(
                     "{per_step:.2} force evaluations per step counted ({claimed} per iteration claimed); the iterations of its solves are not reported (a black box reports them through `BlackBox::implicit`), so the claim cannot be checked"
                 );

@@ -367,7 +367,8 @@ fn confirm(coarser: &EnergyRecord, finer: EnergyRecord, epsilon: f64) -> Weighed
                 round_off_comparison(finer.max_relative_energy_error, finer.steps, epsilon),
             ),
         ),
-        (Verdict::Inconclusive, _) => (
+        // (an energy record judges every scheme: it is never "not claimed")
+        (Verdict::Inconclusive | Verdict::NotClaimed, _) => (
             Verdict::Inconclusive,
             format!(
                 "at half the step, h = {}: {} ({at_coarser})",

@@ -1,0 +1,170 @@
+//! Every claim from one call, and the one rule by which a guard judges a
+//! verdict: a refutation and an inconclusive measurement fail, a claim not
+//! made passes. Each case is a real measurement of the verdict it tests.
+
+use stepladder::guard::{assert_adaptive_claim, assert_claims, assert_order};
+use stepladder::scene::{Anharmonic, Harmonic, KeplerCircular};
+use stepladder::scheme::{DPRKN8, Euler, Leapfrog, VELOCITY_VERLET};
+use stepladder::study::{
+    AdaptiveClaim, ClaimVerdict, DPRKN8_ADAPTIVE, EnergySpec, OrderSpec, ReverseSpec,
+    SymplecticSpec, ToleranceLadderSpec, Verdict, claims, energy_drift, evaluations, global_order,
+    reversibility, symplecticity, tolerance_ladder,
+};
+
+fn panics(f: impl FnOnce() + std::panic::UnwindSafe) -> String {
+    let payload = std::panic::catch_unwind(f).expect_err("the guard should fail");
+    payload
+        .downcast_ref::<String>()
+        .cloned()
+        .unwrap_or_else(|| payload.downcast_ref::<&str>().unwrap().to_string())
+}
+
+/// The record holds the same verdicts as the five studies run one by one
+/// with the guards' default specs, in the documented order.
+#[test]
+fn one_call_returns_the_verdict_of_every_study() {
+    let scene = Harmonic::default();
+    let record = claims(&Euler, &scene).unwrap();
+    let names: Vec<&str> = record.verdicts.iter().map(|v| v.claim).collect();
+    assert_eq!(
+        names,
+        ["order", "symplectic", "reversible", "energy", "evaluations"]
+    );
+    let alone = [
+        global_order(&Euler, &scene, &OrderSpec::default())
+            .unwrap()
+            .verdict,
+        symplecticity(&Euler, &scene, &SymplecticSpec::default())
+            .unwrap()
+            .verdict,
+        reversibility(&Euler, &scene, &ReverseSpec::default())
+            .unwrap()
+            .verdict,
+        energy_drift(&Euler, &scene, &EnergySpec::default())
+            .unwrap()
+            .verdict,
+        evaluations(
+            &Euler,
+            &scene,
+            stepladder::study::cost::evaluations::counting_step(&scene),
+        )
+        .verdict,
+    ];
+    let verdicts: Vec<Verdict> = record.verdicts.iter().map(|v| v.verdict).collect();
+    assert_eq!(verdicts, alone);
+    // explicit Euler makes honest claims (first order, not symplectic, not
+    // symmetric, energy drifting, one call a step): every one holds
+    assert!(record.passed(), "{:?}", record.failures());
+    let json = serde_json::to_string(&record).unwrap();
+    for name in ["\"order\"", "\"evaluations\"", "\"verdicts\"", "\"rungs\""] {
+        assert!(json.contains(name), "{name} missing from the record");
+    }
+}
+
+/// The guard over every claim returns the same record and fails, listing
+/// each failing claim once, when one claim is false.
+#[test]
+fn the_guard_over_every_claim_lists_each_failing_claim() {
+    let record = assert_claims(&VELOCITY_VERLET, &KeplerCircular);
+    assert!(record.verdicts.iter().all(|v| v.verdict == Verdict::Pass));
+    // velocity Verlet claimed third order: only its order claim is false (a
+    // claim below the measured order is a lower bound, and holds)
+    let wrong = stepladder::scheme::BlackBox::new(
+        stepladder::scheme::SchemeMeta::new("verlet-said-third", "Verlet said third", 3)
+            .symplectic()
+            .symmetric()
+            .force_evaluations(2),
+        |q: &mut [f64], v: &mut [f64], h: f64, force: &stepladder::scheme::Force<f64>| {
+            let mut a = [0.0; 1];
+            force(q, &mut a);
+            v[0] += 0.5 * h * a[0];
+            q[0] += h * v[0];
+            force(q, &mut a);
+            v[0] += 0.5 * h * a[0];
+        },
+    );
+    let record = claims(&wrong, &Harmonic::default()).unwrap();
+    let failing: Vec<&str> = record
+        .verdicts
+        .iter()
+        .filter(|v| v.verdict.fails_a_guard())
+        .map(|v| v.claim)
+        .collect();
+    assert_eq!(failing, ["order"], "{:?}", record.failures());
+    let message = panics(|| {
+        assert_claims(&wrong, &Harmonic::default());
+    });
+    assert_eq!(message.lines().count(), 1, "{message}");
+    assert!(message.contains("fail order 3 claimed"), "{message}");
+}
+
+/// Inconclusive fails, claim by claim, on real undecided measurements.
+#[test]
+fn an_inconclusive_order_fails_its_guard() {
+    // DPRKN8 on the anharmonic well: no window fits between its next terms
+    // and the round-off floor
+    let r = global_order(&DPRKN8, &Anharmonic::default(), &OrderSpec::default()).unwrap();
+    assert_eq!(r.verdict, Verdict::Inconclusive, "{}", r.reason);
+    let message = panics(|| {
+        assert_order(&DPRKN8, &Anharmonic::default());
+    });
+    assert!(
+        message.contains("inconclusive order 8 claimed"),
+        "{message}"
+    );
+}
+
+#[test]
+fn an_inconclusive_energy_or_count_fails_its_guard() {
+    let scene = Harmonic::default();
+    // leap-frog at h w0 = 7, past its stability limit 2
+    let energy = energy_drift(
+        &Leapfrog,
+        &scene,
+        &EnergySpec {
+            h: Some(7.0),
+            periods: None,
+        },
+    )
+    .unwrap();
+    assert_eq!(energy.verdict, Verdict::Inconclusive, "{}", energy.reason);
+    let judged = ClaimVerdict::from(&energy);
+    assert_eq!(judged.failure(), Some(judged.message.as_str()));
+    let count = evaluations(&Leapfrog, &scene, 7.0);
+    assert_eq!(count.verdict, Verdict::Inconclusive, "{}", count.reason);
+    assert!(ClaimVerdict::from(&count).failure().is_some());
+}
+
+/// The adaptive integrator's record lists all six claims; an undecided
+/// exponent fails its guard, an error factor it does not state passes.
+#[test]
+fn an_adaptive_claim_not_made_passes_and_an_undecided_one_fails() {
+    let spec = ToleranceLadderSpec {
+        energy_periods: 0.0,
+        ..Default::default()
+    };
+    let record = tolerance_ladder(&DPRKN8_ADAPTIVE, &KeplerCircular, &spec).unwrap();
+    let verdicts = record.verdicts();
+    assert_eq!(verdicts.len(), AdaptiveClaim::ALL.len());
+    let of = |name: &str| verdicts.iter().find(|v| v.claim == name).unwrap().verdict;
+    assert_eq!(of("exponent"), Verdict::Inconclusive, "{}", record.reason);
+    assert_eq!(of("error factor"), Verdict::NotClaimed);
+    assert!(!record.passed());
+    assert_adaptive_claim(&record, AdaptiveClaim::ErrorFactor);
+    let message = panics(|| assert_adaptive_claim(&record, AdaptiveClaim::Exponent));
+    assert!(message.contains("exponent inconclusive"), "{message}");
+}
+
+/// The rule itself, for every verdict.
+#[test]
+fn refuted_and_undecided_fail_a_guard_and_nothing_else_does() {
+    let fails: Vec<bool> = [
+        Verdict::Pass,
+        Verdict::Fail,
+        Verdict::Inconclusive,
+        Verdict::NotClaimed,
+    ]
+    .map(Verdict::fails_a_guard)
+    .into();
+    assert_eq!(fails, [false, true, true, false]);
+}
