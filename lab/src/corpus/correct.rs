@@ -714,7 +714,7 @@ type FsalStep = fn(&mut Vec<f64>, &mut [f64], &mut [f64], f64, &Force<'_, f64>);
 /// The stateful black box [`FSAL_VERLET`] is.
 type FsalVerlet = BlackBox<f64, Stateful<fn() -> Vec<f64>, FsalStep>>;
 
-/// Velocity Verlet as a stateful black box (see [`fsal_verlet_step`]): one
+/// Velocity Verlet as a stateful black box (see `fsal_verlet_step` below): one
 /// force evaluation a step, every claim of the catalogue's velocity Verlet,
 /// and correct only because every run starts from a fresh, empty state.
 pub static FSAL_VERLET: FsalVerlet = BlackBox::stateful(
