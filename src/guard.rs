@@ -97,7 +97,7 @@ pub fn assert_evaluations<M: Scheme, S: Scene<D>, const D: usize>(
 /// ([`ToleranceLadderRecord::verdicts`]).
 pub fn assert_adaptive<I, S, const D: usize>(integrator: &I, scene: &S) -> ToleranceLadderRecord
 where
-    I: crate::study::adaptive::AdaptiveIntegrator,
+    I: crate::study::AdaptiveIntegrator,
     S: Scene<D>,
 {
     let record = adaptive_ladder(integrator, scene);
@@ -111,12 +111,9 @@ where
 /// (`record`, from [`adaptive_ladder`]): the failure names the claim, its
 /// figures and the ladder's points. A claim the integrator does not make
 /// (an error factor not stated, evaluations not reported) holds.
-pub fn assert_adaptive_claim(
-    record: &ToleranceLadderRecord,
-    claim: crate::study::adaptive::AdaptiveClaim,
-) {
+pub fn assert_adaptive_claim(record: &ToleranceLadderRecord, claim: crate::study::AdaptiveClaim) {
     let verdicts = record.verdicts();
-    let position = crate::study::adaptive::AdaptiveClaim::ALL
+    let position = crate::study::AdaptiveClaim::ALL
         .iter()
         .position(|&c| c == claim)
         .expect("every claim is in ALL");
@@ -127,7 +124,7 @@ pub fn assert_adaptive_claim(
 /// with the default spec; panics if it cannot run.
 pub fn adaptive_ladder<I, S, const D: usize>(integrator: &I, scene: &S) -> ToleranceLadderRecord
 where
-    I: crate::study::adaptive::AdaptiveIntegrator,
+    I: crate::study::AdaptiveIntegrator,
     S: Scene<D>,
 {
     study(tolerance_ladder(
@@ -145,9 +142,9 @@ pub fn assert_adaptive_pinned<I, S, const D: usize>(
     scene: &S,
     record: &ToleranceLadderRecord,
     dir: impl AsRef<std::path::Path>,
-) -> crate::study::adaptive::AdaptivePinOutcome
+) -> crate::study::AdaptivePinOutcome
 where
-    I: crate::study::adaptive::AdaptiveIntegrator,
+    I: crate::study::AdaptiveIntegrator,
     S: Scene<D>,
 {
     crate::study::adaptive::check_adaptive_pin(integrator, scene, record, dir.as_ref())
@@ -277,7 +274,7 @@ macro_rules! guard_claims {
 ///
 /// ```
 /// # mod doc {
-/// use stepladder::study::adaptive::DPRKN6_ADAPTIVE;
+/// use stepladder::study::DPRKN6_ADAPTIVE;
 /// use stepladder::scene::KeplerEccentric;
 ///
 /// stepladder::guard_adaptive! {

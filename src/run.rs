@@ -68,8 +68,8 @@ impl Outcome {
         matches!(self, Outcome::Failed { failure, .. } if failure.panicked())
     }
 
-    /// Where a run stopped and why, without the step size: "step 4 (t =
-    /// 28): v[0] = NaN".
+    /// Where a run stopped and why, without the step size: `step 4 (t =
+    /// 28): v[0] = NaN`.
     pub fn where_and_why(&self) -> String {
         use crate::wording::figure;
         match self {

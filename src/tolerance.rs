@@ -475,3 +475,13 @@ pub const ESCAPE_CONFIRM_FACTOR: f64 = 0.5;
 /// Bisections of the largest correct step between two scan points a factor
 /// `2^(1/4)` apart: ten leave it known to 0.02%.
 pub const ESCAPE_BISECTIONS: u32 = 10;
+
+/// End of the stability study's log-spaced scan of `z = h w0`: a scheme
+/// stable up to here is reported stable for every step, and a step beyond
+/// it is refused (a state growing like a power of `h w` soon leaves the
+/// doubles, and the scan has tested all such a step could show).
+pub const SCAN_END: f64 = 1e6;
+/// First point of the stability scans, and the smallest `h w` a study
+/// accepts: below every stability limit worth a step, and a step that
+/// changes the state by less than its rounding can show over a run.
+pub const SCAN_START: f64 = 1e-6;

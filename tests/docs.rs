@@ -122,3 +122,102 @@ fn the_prelude_lists_at_most_thirty_names_by_hand() {
     unique.dedup();
     assert_eq!(unique.len(), names.len(), "a name listed twice: {names:?}");
 }
+
+/// The documented modules and the files that declare what each exports.
+const SURFACE: [(&str, &str); 8] = [
+    ("stepladder::prelude", include_str!("../src/prelude.rs")),
+    ("stepladder::guard", include_str!("../src/guard.rs")),
+    ("stepladder::scheme", include_str!("../src/scheme/mod.rs")),
+    ("stepladder::scene", include_str!("../src/scene/mod.rs")),
+    ("stepladder::study", include_str!("../src/study/mod.rs")),
+    (
+        "stepladder::conditions",
+        include_str!("../src/maths/conditions.rs"),
+    ),
+    ("stepladder::error", include_str!("../src/error.rs")),
+    ("stepladder::state", include_str!("../src/state.rs")),
+];
+
+/// The names a module file makes public: the names of its `pub use` lists
+/// (an `as` rename under its new name) and the items it declares `pub` at
+/// its top level, skipping what is `#[doc(hidden)]`; a function with its
+/// signature as written, up to its body.
+fn exported(source: &str) -> Vec<String> {
+    let lines: Vec<&str> = source.lines().collect();
+    let mut names = Vec::new();
+    let mut i = 0;
+    while i < lines.len() {
+        let line = lines[i];
+        let hidden = i > 0 && lines[i - 1].trim() == "#[doc(hidden)]";
+        let mut statement = line.to_string();
+        if line.starts_with("pub use ") {
+            while !statement.trim_end().ends_with(';') {
+                i += 1;
+                statement.push(' ');
+                statement.push_str(lines[i].trim());
+            }
+            if !hidden {
+                let list = statement
+                    .trim_end_matches(';')
+                    .rsplit_once("::")
+                    .map_or("", |(_, tail)| tail);
+                for item in list.split([',', '{', '}']).map(str::trim) {
+                    if !item.is_empty() {
+                        names.push(item.rsplit(" as ").next().unwrap().to_string());
+                    }
+                }
+            }
+        } else if let Some(rest) = line.strip_prefix("pub ").or_else(|| {
+            line.strip_prefix("macro_rules! ")
+                .filter(|_| lines[i.saturating_sub(1)].trim() == "#[macro_export]")
+        }) {
+            if rest.starts_with("fn ") || rest.starts_with("const fn ") {
+                while !statement.contains('{') && !statement.trim_end().ends_with(';') {
+                    i += 1;
+                    statement.push(' ');
+                    statement.push_str(lines[i].trim());
+                }
+                let signature = statement.split('{').next().unwrap();
+                if !hidden {
+                    names.push(signature.split_whitespace().collect::<Vec<_>>().join(" "));
+                }
+            } else if !hidden && !rest.starts_with("use ") {
+                // a constant up to its value, a type up to its body
+                let head = if rest.starts_with("const ") || rest.starts_with("static ") {
+                    rest.split(" = ").next().unwrap()
+                } else {
+                    rest.split(['{', '(', ';']).next().unwrap()
+                };
+                names.push(head.trim().to_string());
+            }
+        }
+        i += 1;
+    }
+    names
+}
+
+/// The public surface, module by module: every name a user can reach, and
+/// the signatures of the functions declared in the module files. A change
+/// here is a change of the API, reviewed as a snapshot diff
+/// (`cargo insta review`). That no public signature holds a type without a
+/// documented path, and that no path is deeper than two segments, was
+/// checked on this list against rustdoc's own index.
+#[test]
+fn the_public_surface_is_what_the_snapshot_shows() {
+    let mut listing = String::new();
+    for (module, source) in SURFACE {
+        listing.push_str(module);
+        listing.push('\n');
+        let mut names = exported(source);
+        names.sort();
+        for name in names {
+            listing.push_str("    ");
+            listing.push_str(&name);
+            listing.push('\n');
+        }
+    }
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../snapshots");
+    settings.set_prepend_module_to_snapshot(false);
+    settings.bind(|| insta::assert_snapshot!("public_surface", listing));
+}

@@ -9,11 +9,13 @@ use std::cell::Cell;
 /// `scene`, counting every call of `acceleration`.
 ///
 /// ```
-/// use stepladder::run::integrate;
 /// use stepladder::scene::{Counted, Harmonic, Scene};
-/// use stepladder::scheme::VELOCITY_VERLET;
+/// use stepladder::scheme::{Scheme, VELOCITY_VERLET};
 /// let scene = Counted::new(Harmonic::default());
-/// integrate(&VELOCITY_VERLET, &scene, &scene.initial(), 0.1, 100, |_, _, _| {});
+/// let mut carry = VELOCITY_VERLET.start(&scene, &scene.initial(), 0.1);
+/// for _ in 0..100 {
+///     VELOCITY_VERLET.step(&scene, &mut carry, 0.1).unwrap();
+/// }
 /// // one evaluation to start, then one per step
 /// assert_eq!(scene.evaluations(), 101);
 /// ```

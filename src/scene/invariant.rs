@@ -71,81 +71,84 @@ pub struct InvariantValue {
     pub sensitivity: f64,
 }
 
-/// The energy and its sensitivity:
-/// `dE = v . dv - a . dq = (w v) . (dv / w) - a . dq`, so by Cauchy-Schwarz
-/// `|dE| <= sqrt(w^2 |v|^2 + |a|^2) d`.
-pub fn energy<S: Scene<D> + ?Sized, const D: usize>(scene: &S, s: &State<D>) -> InvariantValue {
-    let w = scene.frequency();
-    let a = scene.acceleration(&s.q);
-    InvariantValue {
-        value: scene.energy(s),
-        sensitivity: (w * w * s.v.norm_squared() + a.norm_squared()).sqrt(),
+/// The invariants' values at a state, each with its sensitivity.
+impl InvariantValue {
+    /// The energy and its sensitivity:
+    /// `dE = v . dv - a . dq = (w v) . (dv / w) - a . dq`, so by Cauchy-Schwarz
+    /// `|dE| <= sqrt(w^2 |v|^2 + |a|^2) d`.
+    pub fn energy<S: Scene<D> + ?Sized, const D: usize>(scene: &S, s: &State<D>) -> InvariantValue {
+        let w = scene.frequency();
+        let a = scene.acceleration(&s.q);
+        InvariantValue {
+            value: scene.energy(s),
+            sensitivity: (w * w * s.v.norm_squared() + a.norm_squared()).sqrt(),
+        }
     }
-}
 
-/// Component `axis` of the linear momentum of bodies in `dims` dimensions,
-/// stored body after body (`x1, y1, x2, y2, ...`) in mass-weighted
-/// coordinates `Q_i = sqrt(m_i) q_i`: `P = sum_i sqrt(m_i) Q_i'`. Its
-/// gradient is `sqrt(m_i)` on each body's velocity component, so in the
-/// phase-space metric `|dP| <= w sqrt(sum_i m_i) d`.
-pub fn momentum<const D: usize>(
-    s: &State<D>,
-    sqrt_masses: &[f64],
-    dims: usize,
-    axis: usize,
-    w: f64,
-) -> InvariantValue {
-    let value = sqrt_masses
-        .iter()
-        .enumerate()
-        .map(|(i, m)| m * s.v[dims * i + axis])
-        .sum();
-    let total: f64 = sqrt_masses.iter().map(|m| m * m).sum();
-    InvariantValue {
-        value,
-        sensitivity: w * total.sqrt(),
+    /// Component `axis` of the linear momentum of bodies in `dims` dimensions,
+    /// stored body after body (`x1, y1, x2, y2, ...`) in mass-weighted
+    /// coordinates `Q_i = sqrt(m_i) q_i`: `P = sum_i sqrt(m_i) Q_i'`. Its
+    /// gradient is `sqrt(m_i)` on each body's velocity component, so in the
+    /// phase-space metric `|dP| <= w sqrt(sum_i m_i) d`.
+    pub fn momentum<const D: usize>(
+        s: &State<D>,
+        sqrt_masses: &[f64],
+        dims: usize,
+        axis: usize,
+        w: f64,
+    ) -> InvariantValue {
+        let value = sqrt_masses
+            .iter()
+            .enumerate()
+            .map(|(i, m)| m * s.v[dims * i + axis])
+            .sum();
+        let total: f64 = sqrt_masses.iter().map(|m| m * m).sum();
+        InvariantValue {
+            value,
+            sensitivity: w * total.sqrt(),
+        }
     }
-}
 
-/// The angular momentum about the origin, normal to the plane, of bodies in
-/// the plane stored `x1, y1, x2, y2, ...` in mass-weighted coordinates:
-/// `L = sum_i (X_i Y_i' - Y_i X_i')` (the masses are inside the
-/// coordinates). `dL = sum (Y' dX - X' dY + w X (dY'/w) - w Y (dX'/w))`,
-/// so `|dL| <= sqrt(|Q'|^2 + w^2 |Q|^2) d`.
-pub fn planar_angular_momentum<const D: usize>(s: &State<D>, w: f64) -> InvariantValue {
-    let value = (0..D / 2)
-        .map(|i| s.q[2 * i] * s.v[2 * i + 1] - s.q[2 * i + 1] * s.v[2 * i])
-        .sum();
-    InvariantValue {
-        value,
-        sensitivity: (s.v.norm_squared() + w * w * s.q.norm_squared()).sqrt(),
+    /// The angular momentum about the origin, normal to the plane, of bodies in
+    /// the plane stored `x1, y1, x2, y2, ...` in mass-weighted coordinates:
+    /// `L = sum_i (X_i Y_i' - Y_i X_i')` (the masses are inside the
+    /// coordinates). `dL = sum (Y' dX - X' dY + w X (dY'/w) - w Y (dX'/w))`,
+    /// so `|dL| <= sqrt(|Q'|^2 + w^2 |Q|^2) d`.
+    pub fn planar_angular_momentum<const D: usize>(s: &State<D>, w: f64) -> InvariantValue {
+        let value = (0..D / 2)
+            .map(|i| s.q[2 * i] * s.v[2 * i + 1] - s.q[2 * i + 1] * s.v[2 * i])
+            .sum();
+        InvariantValue {
+            value,
+            sensitivity: (s.v.norm_squared() + w * w * s.q.norm_squared()).sqrt(),
+        }
     }
-}
 
-/// Component `axis` of the angular momentum about the origin of bodies in
-/// space stored `x1, y1, z1, x2, ...` in mass-weighted coordinates: `L =
-/// sum_i Q_i x Q_i'` (the masses are inside the coordinates). With `(a, b,
-/// c)` the axes in cyclic order from `axis`, `L_a = sum_i (Q_ib Q_ic' -
-/// Q_ic Q_ib')`, so `dL_a = sum (Q_ic' dQ_ib - Q_ib' dQ_ic + w Q_ib
-/// (dQ_ic'/w) - w Q_ic (dQ_ib'/w))`: each term has a coordinate of its own,
-/// and the gradient's norm in the phase-space metric is `sqrt(sum_i (Q_ib'^2
-/// + Q_ic'^2 + w^2 (Q_ib^2 + Q_ic^2)))`, the motion across the axis only.
-pub fn spatial_angular_momentum<const D: usize>(
-    s: &State<D>,
-    axis: usize,
-    w: f64,
-) -> InvariantValue {
-    let (b, c) = ((axis + 1) % 3, (axis + 2) % 3);
-    let (mut value, mut gradient) = (0.0, 0.0);
-    for i in 0..D / 3 {
-        let (qb, qc) = (s.q[3 * i + b], s.q[3 * i + c]);
-        let (vb, vc) = (s.v[3 * i + b], s.v[3 * i + c]);
-        value += qb * vc - qc * vb;
-        gradient += vb * vb + vc * vc + w * w * (qb * qb + qc * qc);
-    }
-    InvariantValue {
-        value,
-        sensitivity: gradient.sqrt(),
+    /// Component `axis` of the angular momentum about the origin of bodies in
+    /// space stored `x1, y1, z1, x2, ...` in mass-weighted coordinates: `L =
+    /// sum_i Q_i x Q_i'` (the masses are inside the coordinates). With `(a, b,
+    /// c)` the axes in cyclic order from `axis`, `L_a = sum_i (Q_ib Q_ic' -
+    /// Q_ic Q_ib')`, so `dL_a = sum (Q_ic' dQ_ib - Q_ib' dQ_ic + w Q_ib
+    /// (dQ_ic'/w) - w Q_ic (dQ_ib'/w))`: each term has a coordinate of its own,
+    /// and the gradient's norm in the phase-space metric is `sqrt(sum_i (Q_ib'^2
+    /// + Q_ic'^2 + w^2 (Q_ib^2 + Q_ic^2)))`, the motion across the axis only.
+    pub fn spatial_angular_momentum<const D: usize>(
+        s: &State<D>,
+        axis: usize,
+        w: f64,
+    ) -> InvariantValue {
+        let (b, c) = ((axis + 1) % 3, (axis + 2) % 3);
+        let (mut value, mut gradient) = (0.0, 0.0);
+        for i in 0..D / 3 {
+            let (qb, qc) = (s.q[3 * i + b], s.q[3 * i + c]);
+            let (vb, vc) = (s.v[3 * i + b], s.v[3 * i + c]);
+            value += qb * vc - qc * vb;
+            gradient += vb * vb + vc * vc + w * w * (qb * qb + qc * qc);
+        }
+        InvariantValue {
+            value,
+            sensitivity: gradient.sqrt(),
+        }
     }
 }
 
@@ -191,18 +194,26 @@ mod tests {
     fn sensitivities_are_the_gradients_norms() {
         let orbit = KeplerCircular;
         let s = orbit.exact(0.3).unwrap();
-        check_bound(|s| energy(&orbit, s), &s, orbit.frequency());
-        check_bound(|s| planar_angular_momentum(s, 2.5), &s, 2.5);
+        check_bound(|s| InvariantValue::energy(&orbit, s), &s, orbit.frequency());
+        check_bound(|s| InvariantValue::planar_angular_momentum(s, 2.5), &s, 2.5);
         let osc = Harmonic::default();
-        check_bound(|s| energy(&osc, s), &osc.exact(1.0).unwrap(), 1.0);
+        check_bound(
+            |s| InvariantValue::energy(&osc, s),
+            &osc.exact(1.0).unwrap(),
+            1.0,
+        );
         let bodies = State::<4>::new(
             SVector::from([1.0, 2.0, -0.5, 0.3]),
             SVector::from([0.2, -0.1, 0.7, 0.4]),
         );
         let m = [1.0f64.sqrt(), 3.0f64.sqrt()];
-        check_bound(|s| momentum(s, &m, 2, 0, 1.7), &bodies, 1.7);
-        check_bound(|s| momentum(s, &m, 2, 1, 1.7), &bodies, 1.7);
-        check_bound(|s| planar_angular_momentum(s, 1.7), &bodies, 1.7);
+        check_bound(|s| InvariantValue::momentum(s, &m, 2, 0, 1.7), &bodies, 1.7);
+        check_bound(|s| InvariantValue::momentum(s, &m, 2, 1, 1.7), &bodies, 1.7);
+        check_bound(
+            |s| InvariantValue::planar_angular_momentum(s, 1.7),
+            &bodies,
+            1.7,
+        );
         // two bodies in space, each component of L, and the spatial helper
         // on a planar motion (z = 0) is the planar one
         let spatial = State::<6>::new(
@@ -210,15 +221,19 @@ mod tests {
             SVector::from([0.2, -0.1, 0.7, 0.4, 0.9, -0.6]),
         );
         for axis in 0..3 {
-            check_bound(|s| spatial_angular_momentum(s, axis, 1.7), &spatial, 1.7);
+            check_bound(
+                |s| InvariantValue::spatial_angular_momentum(s, axis, 1.7),
+                &spatial,
+                1.7,
+            );
         }
         let flat = State::<6>::new(
             SVector::from([1.0, 2.0, 0.0, -0.5, 0.3, 0.0]),
             SVector::from([0.2, -0.1, 0.0, 0.7, 0.4, 0.0]),
         );
         let (l3, l2) = (
-            spatial_angular_momentum(&flat, 2, 1.7),
-            planar_angular_momentum(&bodies, 1.7),
+            InvariantValue::spatial_angular_momentum(&flat, 2, 1.7),
+            InvariantValue::planar_angular_momentum(&bodies, 1.7),
         );
         assert_eq!(l3.value, l2.value);
         // the same sum of squares, added in another order: a few roundings

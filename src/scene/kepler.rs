@@ -1,6 +1,6 @@
 //! The Kepler problem `r'' = -GM r / |r|^3` in the plane, in astronomical units.
 
-use super::{Invariant, InvariantValue, Parameters, Parametrised, Scene, SceneMeta, invariant};
+use super::{Invariant, InvariantValue, Parameters, Parametrised, Scene, SceneMeta};
 use crate::error::Error;
 use crate::state::{Real, State};
 use nalgebra::{SVector, Vector2};
@@ -44,9 +44,9 @@ impl Scene<2> for KeplerCircular {
     }
     fn invariant(&self, which: Invariant, s: &State<2>) -> Option<InvariantValue> {
         match which {
-            Invariant::Energy => Some(invariant::energy(self, s)),
+            Invariant::Energy => Some(InvariantValue::energy(self, s)),
             Invariant::AngularMomentum { axis: 2 } => {
-                Some(invariant::planar_angular_momentum(s, self.frequency()))
+                Some(InvariantValue::planar_angular_momentum(s, self.frequency()))
             }
             _ => None,
         }
@@ -183,9 +183,9 @@ impl Scene<2> for KeplerEccentric {
     }
     fn invariant(&self, which: Invariant, s: &State<2>) -> Option<InvariantValue> {
         match which {
-            Invariant::Energy => Some(invariant::energy(self, s)),
+            Invariant::Energy => Some(InvariantValue::energy(self, s)),
             Invariant::AngularMomentum { axis: 2 } => {
-                Some(invariant::planar_angular_momentum(s, self.frequency()))
+                Some(InvariantValue::planar_angular_momentum(s, self.frequency()))
             }
             _ => None,
         }

@@ -9,7 +9,7 @@ mod counted;
 mod elliptic;
 mod harmonic;
 mod hidden;
-pub mod invariant;
+mod invariant;
 mod kepler;
 mod potential;
 mod scaled;
@@ -78,7 +78,7 @@ pub trait Scene<const D: usize> {
         0.5 * s.v.norm_squared() + self.potential(&s.q)
     }
 
-    /// What the exact flow conserves (see [`invariant`]): the energy
+    /// What the exact flow conserves (see [`Invariant`]): the energy
     /// always; linear and angular momentum where the scene has the
     /// symmetry. On a scene without an exact solution the order study
     /// checks that each returns to its initial value as `h -> 0`.
@@ -91,7 +91,7 @@ pub trait Scene<const D: usize> {
     /// with momenta override this and [`Scene::invariants`] together.
     fn invariant(&self, which: Invariant, s: &State<D>) -> Option<InvariantValue> {
         match which {
-            Invariant::Energy => Some(invariant::energy(self, s)),
+            Invariant::Energy => Some(InvariantValue::energy(self, s)),
             _ => None,
         }
     }
@@ -230,7 +230,7 @@ pub fn amplitude(name: &'static str, value: f64) -> Result<f64, Error> {
 /// its rounding can show over a study's run, so any scheme would look exact.
 #[doc(hidden)]
 pub fn step(name: &'static str, h: f64, frequency: f64) -> Result<f64, Error> {
-    use crate::study::stability::{SCAN_END, SCAN_START};
+    use crate::tolerance::{SCAN_END, SCAN_START};
     use crate::wording::figure;
     let h = positive(name, h)?;
     let (smallest, largest) = (SCAN_START / frequency, SCAN_END / frequency);

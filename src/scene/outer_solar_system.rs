@@ -3,7 +3,7 @@
 //! Numerical Integration*, I.2.4.
 
 use super::nbody::Bodies;
-use super::{Invariant, InvariantValue, Parameters, Parametrised, Scene, SceneMeta, invariant};
+use super::{Invariant, InvariantValue, Parameters, Parametrised, Scene, SceneMeta};
 use crate::error::Error;
 use crate::state::{Real, State};
 use nalgebra::SVector;
@@ -169,17 +169,17 @@ impl Scene<18> for OuterSolarSystem {
     fn invariant(&self, which: Invariant, s: &State<18>) -> Option<InvariantValue> {
         let w = self.frequency();
         match which {
-            Invariant::Energy => Some(invariant::energy(self, s)),
-            Invariant::Momentum { axis } if axis < 3 => Some(invariant::momentum(
+            Invariant::Energy => Some(InvariantValue::energy(self, s)),
+            Invariant::Momentum { axis } if axis < 3 => Some(InvariantValue::momentum(
                 s,
                 self.bodies.sqrt_masses(),
                 3,
                 axis as usize,
                 w,
             )),
-            Invariant::AngularMomentum { axis } if axis < 3 => {
-                Some(invariant::spatial_angular_momentum(s, axis as usize, w))
-            }
+            Invariant::AngularMomentum { axis } if axis < 3 => Some(
+                InvariantValue::spatial_angular_momentum(s, axis as usize, w),
+            ),
             _ => None,
         }
     }

@@ -2,7 +2,7 @@
 //! with close encounters and a published state at `t = 3`.
 
 use super::nbody::Bodies;
-use super::{Invariant, InvariantValue, Parameters, Parametrised, Scene, SceneMeta, invariant};
+use super::{Invariant, InvariantValue, Parameters, Parametrised, Scene, SceneMeta};
 use crate::error::Error;
 use crate::state::{Real, State};
 use nalgebra::SVector;
@@ -191,8 +191,8 @@ impl Scene<14> for Pleiades {
     fn invariant(&self, which: Invariant, s: &State<14>) -> Option<InvariantValue> {
         let w = self.frequency();
         match which {
-            Invariant::Energy => Some(invariant::energy(self, s)),
-            Invariant::Momentum { axis } if axis < 2 => Some(invariant::momentum(
+            Invariant::Energy => Some(InvariantValue::energy(self, s)),
+            Invariant::Momentum { axis } if axis < 2 => Some(InvariantValue::momentum(
                 s,
                 self.bodies.sqrt_masses(),
                 2,
@@ -200,7 +200,7 @@ impl Scene<14> for Pleiades {
                 w,
             )),
             Invariant::AngularMomentum { axis: 2 } => {
-                Some(invariant::planar_angular_momentum(s, w))
+                Some(InvariantValue::planar_angular_momentum(s, w))
             }
             _ => None,
         }

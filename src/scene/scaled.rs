@@ -193,10 +193,10 @@ impl<S: Scene<D>, const D: usize> Scene<D> for Scaled<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Anharmonic, Harmonic, KeplerCircular, KeplerEccentric, invariant};
+    use crate::scene::{Anharmonic, Harmonic, InvariantValue, KeplerCircular, KeplerEccentric};
 
     /// The mapped invariants are what the scene's own formulas give in the
-    /// new units: the energy and sensitivity from `invariant::energy` on the
+    /// new units: the energy and sensitivity from `InvariantValue::energy` on the
     /// scaled scene (its potential and frequency), the angular momentum from
     /// `planar_angular_momentum` on the scaled state and frequency.
     #[test]
@@ -206,12 +206,12 @@ mod tests {
             let orbit = Scaled::units(KeplerEccentric::default(), l, t).unwrap();
             let s = orbit.exact(0.3 * orbit.period()).unwrap();
             let mapped = orbit.invariant(Invariant::Energy, &s).unwrap();
-            let direct = invariant::energy(&orbit, &s);
+            let direct = InvariantValue::energy(&orbit, &s);
             assert!(close(mapped.value, direct.value), "{mapped:?} {direct:?}");
             assert!(close(mapped.sensitivity, direct.sensitivity));
             let which = Invariant::AngularMomentum { axis: 2 };
             let mapped = orbit.invariant(which, &s).unwrap();
-            let direct = invariant::planar_angular_momentum(&s, orbit.frequency());
+            let direct = InvariantValue::planar_angular_momentum(&s, orbit.frequency());
             assert!(close(mapped.value, direct.value), "{mapped:?} {direct:?}");
             assert!(close(mapped.sensitivity, direct.sensitivity));
             assert!(

@@ -6,15 +6,16 @@
 //! the acceleration it will reuse); [`Scheme::state`] hands studies a
 //! synchronised `(q, v)` at whole steps so they compare like with like.
 
-pub mod adapter;
-pub mod black_box;
+mod adapter;
+mod black_box;
 mod catalogue;
+#[doc(hidden)]
 pub mod compensated;
 mod composition;
 mod euler;
 mod implicit;
 mod multistep;
-pub mod nystrom_rk;
+mod nystrom_rk;
 mod nystrom_splitting;
 mod runge_kutta;
 mod single_precision;
@@ -23,12 +24,13 @@ mod verlet;
 
 pub use adapter::{Hamiltonian, Rhs, Vector, VectorForce};
 pub use black_box::{
-    BlackBox, BlackBoxStep, Float, Force, Implicit, Solve, SolveTally, Stateful, StepFn,
+    BlackBox, BlackBoxCarry, BlackBoxStep, Float, Force, Implicit, Solve, SolveTally, Stateful,
+    StepFn,
 };
 pub use catalogue::{SchemeVisitor, TABLES, catalogue, scheme_ids, visit_scheme};
 pub use compensated::{
-    CompensatedSplitting, LeapfrogCompensated, StormerVerletCompensated,
-    VELOCITY_VERLET_COMPENSATED,
+    CompensatedSplitting, LeapfrogCompensated, SplittingCompensated, StaggeredCompensated,
+    StormerVerletCompensated, Summed, TwoStepCompensated, VELOCITY_VERLET_COMPENSATED,
 };
 pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use euler::Euler;
@@ -41,7 +43,7 @@ pub use nystrom_splitting::{
 pub use runge_kutta::Rk4;
 pub use single_precision::{SingleCarry, SinglePrecision};
 pub use splitting::{EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
-pub use verlet::{Leapfrog, StormerVerlet};
+pub use verlet::{Leapfrog, Staggered, StormerVerlet, TwoStep};
 
 use crate::scene::Scene;
 use crate::state::{Real, State};

@@ -16,7 +16,7 @@ use std::any::Any;
 /// does not change which map the scheme is.
 ///
 /// ```
-/// use stepladder::study::accuracy::order::{global_order, OrderSpec};
+/// use stepladder::study::{global_order, OrderSpec};
 /// use stepladder::scene::Harmonic;
 /// use stepladder::scheme::{SinglePrecision, VELOCITY_VERLET};
 ///

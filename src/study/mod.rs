@@ -77,5 +77,23 @@ pub use round_off::longrun::{LongrunRecord, LongrunSpec, longrun};
 pub use stability::{StabilityRecord, stability};
 
 pub use breakdown::Breakdown;
+
+// What the records above hold, so that every field can be named.
+pub use crate::ladder::{AutoLadder, Ladder, LadderChoice, LadderEnd, RungSize};
+pub use crate::maths::fit::{Correction, OrderFit, PowerLaw};
+pub use crate::maths::window::RoundOffModel;
+pub use crate::run::Outcome;
+pub use accuracy::invariants::{InvariantRecord, InvariantRung};
+pub use accuracy::phase::PhaseSample;
+pub use adaptive::record::{EnergyGrowth, Proportionality, RoundTrip};
 pub use claims::{ClaimVerdict, ClaimsRecord, claims};
+pub use cost::step_time::SchemeSpeed;
+pub use cost::work_points::{Reach, TargetCost, WorkPoint};
+pub use geometry::symplectic::TangentSample;
+pub use hard::eccentric::{OrbitEnergy, OrderStatus, Pericentre};
+pub use hard::escape::{Classification, Misclassified, OrbitRun};
+pub use hard::following::{Event, FollowingRung, LineFit};
+pub use round_off::floor::{Floor, PairRecord, RoundoffRung};
+pub use round_off::longrun::{Conserved, ConservedQuantity};
+pub use stability::{GrowthAt, GrowthLaw, GrowthSource};
 pub use verdict::Verdict;

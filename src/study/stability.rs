@@ -37,10 +37,9 @@ use std::f64::consts::TAU;
 pub const LINEAR_SCAN_STEP: f64 = 1e-3;
 /// End of the fine linear scan: beyond every explicit scheme's limit.
 pub const LINEAR_SCAN_END: f64 = 20.0;
-/// End of the log-spaced scan.
-pub const SCAN_END: f64 = 1e6;
-/// First point of the scans: below every stability limit worth a step.
-pub const SCAN_START: f64 = 1e-6;
+// The scan's ends are thresholds of their own, which the scenes' step checks
+// read as well: they live with the other thresholds, below the scenes.
+pub use crate::tolerance::{SCAN_END, SCAN_START};
 
 /// The steps `z = h w0` at which the growth of an unstable map is reported:
 /// from ten to three steps a radian, where a run of any length sees it.
@@ -385,7 +384,7 @@ pub fn stability<M: Scheme>(scheme: &M) -> StabilityRecord {
     };
     // per evaluation actually spent: counted on the oscillator the scan runs on
     let evaluations =
-        crate::study::cost::evaluations::per_step_charged(scheme, &Harmonic::default()).max(1.0);
+        crate::study::cost::count::per_step_charged(scheme, &Harmonic::default()).max(1.0);
     let growth_resolution = scheme
         .recurrence_on_oscillator(SCAN_START)
         .is_none()

@@ -4,7 +4,7 @@
 
 use nalgebra::{SVector, Vector1, Vector2, Vector4, Vector6};
 use std::f64::consts::{PI, TAU};
-use stepladder::scene::{Invariant, InvariantValue, Scene, SceneMeta, invariant};
+use stepladder::scene::{Invariant, InvariantValue, Scene, SceneMeta};
 use stepladder::state::{Real, State};
 
 /// The figure-eight choreography of three equal masses (`G = m = 1`) in the
@@ -95,12 +95,12 @@ impl Scene<6> for FigureEight {
     fn invariant(&self, which: Invariant, s: &State<6>) -> Option<InvariantValue> {
         let w = self.frequency();
         match which {
-            Invariant::Energy => Some(invariant::energy(self, s)),
+            Invariant::Energy => Some(InvariantValue::energy(self, s)),
             Invariant::Momentum { axis } if axis < 2 => {
-                Some(invariant::momentum(s, &[1.0; 3], 2, axis as usize, w))
+                Some(InvariantValue::momentum(s, &[1.0; 3], 2, axis as usize, w))
             }
             Invariant::AngularMomentum { axis: 2 } => {
-                Some(invariant::planar_angular_momentum(s, w))
+                Some(InvariantValue::planar_angular_momentum(s, w))
             }
             _ => None,
         }

@@ -1,6 +1,8 @@
 //! Markdown building blocks: tables and number formats that stay identical
 //! across machines (a few significant digits, never the last bits).
 
+use stepladder::study::Reach;
+
 /// A Markdown table.
 #[derive(Clone, Debug, Default)]
 pub struct Table {
@@ -125,4 +127,33 @@ pub fn list_indent(line: &str) -> usize {
         return lead + digits + 2;
     }
     lead
+}
+
+/// A cost in force evaluations, to three digits; `<=` marks an upper bound.
+pub fn evaluations(r: Reach) -> String {
+    match r {
+        Reach::Interpolated(c) => sci(c),
+        Reach::AtMost(c) => format!("<= {}", sci(c)),
+        Reach::NotReached => "not reached".into(),
+    }
+}
+
+/// A duration in seconds with a unit, to three digits.
+pub fn duration(seconds: f64) -> String {
+    if seconds < 1e-3 {
+        format!("{:.3} us", seconds * 1e6)
+    } else if seconds < 1.0 {
+        format!("{:.3} ms", seconds * 1e3)
+    } else {
+        format!("{seconds:.3} s")
+    }
+}
+
+/// A time to target; `<=` marks an upper bound.
+pub fn time_reach(r: Reach) -> String {
+    match r {
+        Reach::Interpolated(c) => duration(c),
+        Reach::AtMost(c) => format!("<= {}", duration(c)),
+        Reach::NotReached => "not reached".into(),
+    }
 }

@@ -3,7 +3,7 @@
 //! against, and by wall time (machine-dependent).
 
 use super::markdown::{Table, sci};
-use super::work_precision::{evaluations, time_reach};
+use super::markdown::{evaluations, time_reach};
 use crate::peer::peer_names;
 use crate::suite::race::{
     NBODY_FIRST_STEPS, NBODY_FIRST_TOLERANCE, NbodyRecord, RACE_TARGETS, REFERENCE_SHARE,

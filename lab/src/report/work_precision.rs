@@ -2,7 +2,7 @@
 //! force evaluations (deterministic), and ns per step and time to target
 //! (machine-dependent).
 
-use super::markdown::{Table, sci};
+use super::markdown::{Table, evaluations, sci, time_reach};
 use crate::peer::{PEER_TOLERANCES, peer_names};
 use crate::suite::race::RaceRecords;
 use crate::suite::work_precision::{Cheapest, Fastest, WorkRecord, WorkTiming};
@@ -11,35 +11,6 @@ use stepladder::study::cost::step_time::SpeedRecord;
 use stepladder::study::cost::work_points::{
     ENERGY_FLOOR_GUARD, ENERGY_MAX_STEPS, ENERGY_PERIODS, ENERGY_START, Reach, TARGETS, TargetCost,
 };
-
-/// A cost in force evaluations, to three digits; `<=` marks an upper bound.
-pub fn evaluations(r: Reach) -> String {
-    match r {
-        Reach::Interpolated(c) => sci(c),
-        Reach::AtMost(c) => format!("<= {}", sci(c)),
-        Reach::NotReached => "not reached".into(),
-    }
-}
-
-/// A duration in seconds with a unit, to three digits.
-pub fn duration(seconds: f64) -> String {
-    if seconds < 1e-3 {
-        format!("{:.3} us", seconds * 1e6)
-    } else if seconds < 1.0 {
-        format!("{:.3} ms", seconds * 1e3)
-    } else {
-        format!("{seconds:.3} s")
-    }
-}
-
-/// A time to target; `<=` marks an upper bound.
-pub fn time_reach(r: Reach) -> String {
-    match r {
-        Reach::Interpolated(c) => duration(c),
-        Reach::AtMost(c) => format!("<= {}", duration(c)),
-        Reach::NotReached => "not reached".into(),
-    }
-}
 
 fn target_header() -> Vec<String> {
     TARGETS.iter().map(|t| format!("{t:.0e}")).collect()

@@ -3,7 +3,7 @@
 //! step, which shows that the scheme converges, not to what: a force with a
 //! wrong component converges at the claimed order to the solution of another
 //! equation. What the exact flow conserves is the absolute truth left
-//! ([`crate::scene::invariant`]), and this study checks it on every rung.
+//! ([`crate::scene::Invariant`]), and this study checks it on every rung.
 //!
 //! # The bound
 //!

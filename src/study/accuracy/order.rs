@@ -239,7 +239,7 @@ pub fn exact_rung_error<M: Scheme, S: Scene<D>, const D: usize>(
 /// Measures the global order of `scheme` on `scene`.
 ///
 /// ```
-/// use stepladder::study::accuracy::order::{global_order, OrderSpec};
+/// use stepladder::study::{global_order, OrderSpec};
 /// use stepladder::scene::Harmonic;
 /// use stepladder::scheme::{Scheme, VELOCITY_VERLET};
 ///

@@ -7,7 +7,7 @@
 //!
 //! ```
 //! use stepladder::guard;
-//! use stepladder::study::adaptive::{AdaptiveBlackBox, AdaptiveClaims, Advance};
+//! use stepladder::study::{AdaptiveBlackBox, AdaptiveClaims, Advance};
 //! use stepladder::scene::KeplerCircular;
 //! use stepladder::scheme::Force;
 //!

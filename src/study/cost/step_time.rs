@@ -118,7 +118,7 @@ pub fn time_run<M: Scheme, S: Scene<D>, const D: usize>(
         // does not depend on the scene, and counting runs on `scene` itself
         // would add to the calls a caller counts there
         _ => (steps as f64
-            * crate::study::cost::evaluations::per_step_charged(
+            * crate::study::cost::count::per_step_charged(
                 scheme,
                 &crate::scene::Harmonic::default(),
             ))

@@ -268,7 +268,7 @@ fn exact_point<M: Scheme, S: Scene<D> + Clone, const D: usize>(
         let _ = integrate(scheme, &counted, &counted.initial(), h, steps, |_, _, _| {});
         counted.evaluations()
     } else {
-        let per_step = crate::study::cost::evaluations::per_step_charged(scheme, scene);
+        let per_step = crate::study::cost::count::per_step_charged(scheme, scene);
         start_evaluations(scheme, scene, h) + (steps as f64 * per_step).round() as u64
     };
     Some(WorkPoint {
@@ -291,7 +291,7 @@ pub fn global_points<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     record: &OrderRecord,
 ) -> Vec<WorkPoint> {
     let meta = scheme.meta();
-    let per_step = crate::study::cost::evaluations::per_step_charged(scheme, scene);
+    let per_step = crate::study::cost::count::per_step_charged(scheme, scene);
     record
         .rungs
         .iter()

@@ -67,19 +67,19 @@ pub const SAMPLES: usize = 200;
 /// The exactly conserved quantity followed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Invariant {
+pub enum ConservedQuantity {
     /// `v^2/2 + w^2 x^2 (1 - (h w)^2/4)/2` on the oscillator.
     ModifiedEnergy,
     /// `x v_y - y v_x` on a Kepler orbit.
     AngularMomentum,
 }
 
-impl Invariant {
+impl ConservedQuantity {
     /// The kebab-case name used in records and tables.
     pub fn name(self) -> &'static str {
         match self {
-            Invariant::ModifiedEnergy => "modified energy",
-            Invariant::AngularMomentum => "angular momentum",
+            ConservedQuantity::ModifiedEnergy => "modified energy",
+            ConservedQuantity::AngularMomentum => "angular momentum",
         }
     }
 }
@@ -101,7 +101,7 @@ pub struct LongrunRecord {
     /// Scene id.
     pub scene: &'static str,
     /// The quantity followed.
-    pub invariant: Invariant,
+    pub invariant: ConservedQuantity,
     /// The step.
     pub h: f64,
     /// Steps of each run.
@@ -133,14 +133,14 @@ pub struct LongrunRecord {
 /// synchronised state.
 pub trait Conserved<const D: usize>: Scene<D> {
     /// Which quantity.
-    fn quantity(&self) -> Invariant;
+    fn quantity(&self) -> ConservedQuantity;
     /// Its value at `(q, v)` for runs with step `h`.
     fn value(&self, q: &nalgebra::SVector<f64, D>, v: &nalgebra::SVector<f64, D>, h: f64) -> f64;
 }
 
 impl Conserved<1> for Harmonic {
-    fn quantity(&self) -> Invariant {
-        Invariant::ModifiedEnergy
+    fn quantity(&self) -> ConservedQuantity {
+        ConservedQuantity::ModifiedEnergy
     }
     #[inline(always)]
     fn value(&self, q: &nalgebra::Vector1<f64>, v: &nalgebra::Vector1<f64>, h: f64) -> f64 {
@@ -155,8 +155,8 @@ fn angular_momentum(q: &nalgebra::Vector2<f64>, v: &nalgebra::Vector2<f64>) -> f
 }
 
 impl Conserved<2> for KeplerCircular {
-    fn quantity(&self) -> Invariant {
-        Invariant::AngularMomentum
+    fn quantity(&self) -> ConservedQuantity {
+        ConservedQuantity::AngularMomentum
     }
     #[inline(always)]
     fn value(&self, q: &nalgebra::Vector2<f64>, v: &nalgebra::Vector2<f64>, _: f64) -> f64 {
@@ -165,8 +165,8 @@ impl Conserved<2> for KeplerCircular {
 }
 
 impl Conserved<2> for KeplerEccentric {
-    fn quantity(&self) -> Invariant {
-        Invariant::AngularMomentum
+    fn quantity(&self) -> ConservedQuantity {
+        ConservedQuantity::AngularMomentum
     }
     #[inline(always)]
     fn value(&self, q: &nalgebra::Vector2<f64>, v: &nalgebra::Vector2<f64>, _: f64) -> f64 {

@@ -2,7 +2,7 @@
 
 use nalgebra::SVector;
 use std::f64::consts::{PI, TAU};
-use stepladder::scene::{Invariant, InvariantValue, Scene, SceneMeta, invariant};
+use stepladder::scene::{Invariant, InvariantValue, Scene, SceneMeta};
 use stepladder::state::{Real, State};
 
 // ======================================================================= scenes
@@ -612,11 +612,17 @@ fn planar_bodies<S: Scene<D>, const D: usize>(
 ) -> Option<InvariantValue> {
     let w = scene.frequency();
     match which {
-        Invariant::Energy => Some(invariant::energy(scene, s)),
-        Invariant::Momentum { axis } if axis < 2 => {
-            Some(invariant::momentum(s, sqrt_masses, 2, axis as usize, w))
+        Invariant::Energy => Some(InvariantValue::energy(scene, s)),
+        Invariant::Momentum { axis } if axis < 2 => Some(InvariantValue::momentum(
+            s,
+            sqrt_masses,
+            2,
+            axis as usize,
+            w,
+        )),
+        Invariant::AngularMomentum { axis: 2 } => {
+            Some(InvariantValue::planar_angular_momentum(s, w))
         }
-        Invariant::AngularMomentum { axis: 2 } => Some(invariant::planar_angular_momentum(s, w)),
         _ => None,
     }
 }
