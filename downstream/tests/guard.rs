@@ -23,7 +23,7 @@ use ode_solvers::{Dop853, Dopri5, OutputType, Rk4, System};
 use stepladder::nalgebra::{SVector, Vector1};
 use stepladder::prelude::*;
 use stepladder::scene::SceneMeta;
-use stepladder::scheme::{BlackBoxStep, Float, Hamiltonian, Rhs, VectorForce};
+use stepladder::scheme::{AnyBlackBox, BlackBoxStep, Float, Hamiltonian, Rhs, VectorForce};
 use stepladder::study::{Advance, AdvanceFn, OrderSpec, RunEnd, global_order};
 use utsuroi::{DynamicalSystem, StormerVerlet, Yoshida4};
 
@@ -421,6 +421,31 @@ stepladder::guard_claims! {
         kepler_circular: KeplerCircular,
         kepler_eccentric: KeplerEccentric::new(0.6).unwrap(),
     }
+}
+
+/// Integrators of three crates, wrapped by three different constructors
+/// (one of them a solver object kept between steps), held in one list and
+/// judged in one loop, each record's verdicts printed as a table row.
+#[test]
+fn integrators_of_three_crates_in_one_list_are_guarded_in_one_loop() {
+    let all: Vec<AnyBlackBox> = vec![
+        BlackBox::first_order(RK4_CLAIMS, ode_solvers_rk4::<f64, 4>).boxed(),
+        utsuroi_stormer_verlet::<2>().boxed(),
+        utsuroi_yoshida4::<2>().boxed(),
+        BlackBox::canonical(VELOCITY_VERLET_CLAIMS, &[], velocity_verlet).boxed(),
+        differential_equations_rk4().boxed(),
+    ];
+    let mut table = String::from(
+        "| integrator | order | symplectic | reversible | energy | evaluations |\n|---|---|---|---|---|---|\n",
+    );
+    for integrator in &all {
+        let record = stepladder::study::claims(integrator, &KeplerCircular).unwrap();
+        let verdicts: Vec<&str> = record.verdicts.iter().map(|v| v.verdict.name()).collect();
+        table += &format!("| `{}` | {} |\n", record.scheme, verdicts.join(" | "));
+        assert!(record.passed(), "{}", record.failures().join("\n"));
+    }
+    println!("{table}");
+    assert_eq!(table.lines().count(), 2 + all.len());
 }
 
 /// Guards a broken variant must fail, named after the claim that catches it.

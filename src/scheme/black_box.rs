@@ -403,6 +403,150 @@ impl<R: Real, const D: usize, K> Debug for BlackBoxCarry<R, D, K> {
     }
 }
 
+/// A black box's step with the type of its step and of what it keeps
+/// hidden, so that black boxes of every shape and from every crate are one
+/// type, [`AnyBlackBox`], and fit one `Vec` (see [`BlackBox::boxed`]).
+/// What the step keeps is boxed once per run, at its start; a step makes one
+/// dynamic call and allocates nothing.
+pub struct AnyStep<T>(Box<dyn ErasedStep<T> + Send + Sync>);
+
+/// What an [`AnyStep`] keeps between steps: the wrapped step's state.
+pub struct AnyKept(Box<dyn KeptState>);
+
+/// A kept state that can be cloned behind a box.
+trait KeptState: Any + Send + Sync {
+    fn clone_box(&self) -> Box<dyn KeptState>;
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+    fn as_any(&self) -> &dyn Any;
+}
+
+impl<K: Clone + Send + Sync + 'static> KeptState for K {
+    fn clone_box(&self) -> Box<dyn KeptState> {
+        Box::new(self.clone())
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+impl Clone for AnyKept {
+    fn clone(&self) -> Self {
+        AnyKept(self.0.clone_box())
+    }
+}
+
+/// [`BlackBoxStep`] with its kept state behind [`AnyKept`].
+trait ErasedStep<T> {
+    fn fresh(&self) -> AnyKept;
+    fn advance(&self, kept: &mut AnyKept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>);
+    fn tally(&self, kept: &AnyKept) -> Option<SolveTally>;
+}
+
+impl<T, F> ErasedStep<T> for F
+where
+    F: BlackBoxStep<T>,
+    F::Kept: 'static,
+{
+    fn fresh(&self) -> AnyKept {
+        AnyKept(Box::new(BlackBoxStep::fresh(self)))
+    }
+    fn advance(&self, kept: &mut AnyKept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+        // the kept state was made by this step's `fresh`: its type is F::Kept
+        let kept = kept
+            .0
+            .as_any_mut()
+            .downcast_mut::<F::Kept>()
+            .expect("the kept state of this step");
+        BlackBoxStep::advance(self, kept, q, v, h, force)
+    }
+    fn tally(&self, kept: &AnyKept) -> Option<SolveTally> {
+        let kept = kept.0.as_any().downcast_ref::<F::Kept>()?;
+        BlackBoxStep::tally(self, kept)
+    }
+}
+
+impl<T> BlackBoxStep<T> for AnyStep<T> {
+    type Kept = AnyKept;
+    fn fresh(&self) -> AnyKept {
+        self.0.fresh()
+    }
+    fn advance(&self, kept: &mut AnyKept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+        self.0.advance(kept, q, v, h, force)
+    }
+    fn tally(&self, kept: &AnyKept) -> Option<SolveTally> {
+        self.0.tally(kept)
+    }
+}
+
+/// A black box of any shape: what [`BlackBox::boxed`] returns, so that
+/// integrators wrapped by different constructors, from different crates,
+/// are held in one `Vec` and guarded in one loop.
+pub type AnyBlackBox<T = f64> = BlackBox<T, AnyStep<T>>;
+
+impl<T: 'static, F> BlackBox<T, F>
+where
+    F: BlackBoxStep<T> + Send + Sync + 'static,
+    F::Kept: 'static,
+{
+    /// The same black box with its step's type hidden: every constructor's
+    /// result becomes an [`AnyBlackBox`], whatever its shape and whatever it
+    /// keeps between steps.
+    ///
+    /// ```
+    /// use stepladder::scene::Harmonic;
+    /// use stepladder::scheme::{AnyBlackBox, BlackBox, Force, SchemeMeta};
+    /// use stepladder::study::claims;
+    ///
+    /// fn euler_cromer(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
+    ///     let mut a = [0.0];
+    ///     force(q, &mut a);
+    ///     v[0] += h * a[0];
+    ///     q[0] += h * v[0];
+    /// }
+    /// let kept_force = BlackBox::stateful(
+    ///     SchemeMeta::new("kept-force-verlet", "velocity Verlet, last force kept", 2)
+    ///         .symplectic()
+    ///         .symmetric(),
+    ///     || None::<f64>,
+    ///     |last: &mut Option<f64>, q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
+    ///         let mut a = [0.0];
+    ///         let first = last.unwrap_or_else(|| {
+    ///             force(q, &mut a);
+    ///             a[0]
+    ///         });
+    ///         v[0] += 0.5 * h * first;
+    ///         q[0] += h * v[0];
+    ///         force(q, &mut a);
+    ///         v[0] += 0.5 * h * a[0];
+    ///         *last = Some(a[0]);
+    ///     },
+    /// );
+    /// let all: Vec<AnyBlackBox> = vec![
+    ///     BlackBox::new(
+    ///         SchemeMeta::new("their-euler-cromer", "Euler-Cromer", 1).symplectic(),
+    ///         euler_cromer as fn(&mut [f64], &mut [f64], f64, &Force<f64>),
+    ///     )
+    ///     .boxed(),
+    ///     kept_force.boxed(),
+    /// ];
+    /// for integrator in &all {
+    ///     let record = claims(integrator, &Harmonic::default())?;
+    ///     assert!(record.passed(), "{:?}", record.failures());
+    /// }
+    /// # Ok::<(), stepladder::error::Error>(())
+    /// ```
+    pub fn boxed(self) -> AnyBlackBox<T> {
+        BlackBox {
+            meta: self.meta,
+            step: AnyStep(Box::new(self.step)),
+            scalar: PhantomData,
+        }
+    }
+}
+
 impl<T, F> Scheme for BlackBox<T, F>
 where
     T: Float,

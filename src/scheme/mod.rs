@@ -24,8 +24,8 @@ mod verlet;
 
 pub use adapter::{Hamiltonian, Rhs, Vector, VectorForce};
 pub use black_box::{
-    BlackBox, BlackBoxCarry, BlackBoxStep, Float, Force, Implicit, Solve, SolveTally, Stateful,
-    StepFn,
+    AnyBlackBox, AnyKept, AnyStep, BlackBox, BlackBoxCarry, BlackBoxStep, Float, Force, Implicit,
+    Solve, SolveTally, Stateful, StepFn,
 };
 pub use catalogue::{SchemeVisitor, TABLES, catalogue, scheme_ids, visit_scheme};
 pub use compensated::{
