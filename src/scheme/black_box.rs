@@ -403,6 +403,36 @@ impl<R: Real, const D: usize, K> Debug for BlackBoxCarry<R, D, K> {
     }
 }
 
+impl<T: Float, F: BlackBoxStep<T>> BlackBox<T, F> {
+    /// One step of the wrapped integrator from `(q, v)`, in place, with the
+    /// force `force` and what a run keeps starting fresh: a wrapped step
+    /// probed directly, without a scene or a study.
+    ///
+    /// ```
+    /// use stepladder::scheme::{BlackBox, Force, SchemeMeta};
+    ///
+    /// let verlet = BlackBox::new(
+    ///     SchemeMeta::new("their-verlet", "velocity Verlet", 2).force_evaluations(2),
+    ///     |q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
+    ///         let mut a = [0.0];
+    ///         force(q, &mut a);
+    ///         v[0] += 0.5 * h * a[0];
+    ///         q[0] += h * v[0];
+    ///         force(q, &mut a);
+    ///         v[0] += 0.5 * h * a[0];
+    ///     },
+    /// );
+    /// let (mut q, mut v) = ([1.0], [0.0]);
+    /// verlet.step_once(&mut q, &mut v, 0.5, &|x: &[f64], a: &mut [f64]| a[0] = -x[0]);
+    /// // on q'' = -q from (1, 0): q = 1 - h^2/2, v = -h (1 - h^2/4)
+    /// assert_eq!((q[0], v[0]), (0.875, -0.46875));
+    /// ```
+    pub fn step_once(&self, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+        let mut kept = self.step.fresh();
+        self.step.advance(&mut kept, q, v, h, force);
+    }
+}
+
 /// A black box's step with the type of its step and of what it keeps
 /// hidden, so that black boxes of every shape and from every crate are one
 /// type, [`AnyBlackBox`], and fit one `Vec` (see [`BlackBox::boxed`]).
