@@ -606,6 +606,26 @@ mod tests {
     use crate::scene::{Harmonic, Hidden, KeplerCircular};
     use crate::scheme::{FOREST_RUTH, PEFRL, Rk4, VELOCITY_VERLET};
 
+    /// The pinned step is the span over the steps, and the tolerance is
+    /// read as a fraction of the error: 10 over 400 steps is h = 1/40.
+    #[test]
+    fn a_pin_states_its_step_and_relative_tolerance() {
+        let pin = Pin {
+            scheme: "s".into(),
+            scene: "harmonic".into(),
+            order: 2,
+            measured_order: 2.0,
+            reference: Reference::Exact,
+            t_end: 10.0,
+            steps: 400,
+            error: 4e-3,
+            round_off: 1e-15,
+            tolerance: 2e-14,
+        };
+        assert_eq!(pin.h(), 0.025);
+        assert!((pin.relative_tolerance() - 5e-12).abs() < 1e-26);
+    }
+
     fn dir(name: &str) -> PathBuf {
         let d = std::env::temp_dir().join(format!("stepladder-pin-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&d);

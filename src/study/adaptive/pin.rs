@@ -301,6 +301,14 @@ mod tests {
     use crate::scene::KeplerCircular;
     use crate::study::adaptive::{DPRKN6_ADAPTIVE, ToleranceLadderSpec, tolerance_ladder};
 
+    /// A name becomes a file stem of plain kebab-case, never a path.
+    #[test]
+    fn file_stems_are_plain_kebab_case() {
+        assert_eq!(file_stem("DPRKN6(4) adaptive"), "dprkn6-4-adaptive");
+        assert_eq!(file_stem("../../escaped pin"), "escaped-pin");
+        assert_eq!(file_stem("--A__b--"), "a-b");
+    }
+
     fn scratch(name: &str) -> PathBuf {
         let dir =
             std::env::temp_dir().join(format!("stepladder-apin-{name}-{}", std::process::id()));
