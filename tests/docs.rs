@@ -94,23 +94,7 @@ fn the_table_reader_sees_a_wrong_row() {
 /// stepladder::prelude::*` brings nothing the list does not show.
 #[test]
 fn the_prelude_lists_at_most_thirty_names_by_hand() {
-    let source = include_str!("../src/prelude.rs");
-    let code: String = source
-        .lines()
-        .filter(|l| !l.trim_start().starts_with("//"))
-        .collect::<Vec<_>>()
-        .join("\n");
-    let mut names = Vec::new();
-    for statement in code.split(';').filter(|s| s.contains("pub use")) {
-        let list = statement
-            .rsplit_once("::")
-            .map_or(statement, |(_, tail)| tail);
-        for name in list.split([',', '{', '}']).map(str::trim) {
-            if !name.is_empty() {
-                names.push(name.to_string());
-            }
-        }
-    }
+    let names = exported(include_str!("../src/prelude.rs"));
     assert!(!names.is_empty(), "no names found in src/prelude.rs");
     assert!(
         names.iter().all(|n| n != "*" && n != "self"),
