@@ -16,9 +16,9 @@ use criterion::{
 use ode_solvers::{Dop853, OutputType, Rk4, System, Vector4};
 use std::f64::consts::PI;
 use std::hint::black_box;
+use stepladder::internals::cost::step_time::{floor_verlet_kepler, run_steps};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene};
 use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
-use stepladder::study::cost::step_time::{floor_verlet_kepler, run_steps};
 
 /// Steps per measured iteration: long enough that set-up is negligible.
 const STEPS: u64 = 10_000;

@@ -97,7 +97,7 @@ pub fn assert_evaluations<M: Scheme, S: Scene<D>, const D: usize>(
 /// ([`ToleranceLadderRecord::verdicts`]).
 pub fn assert_adaptive<I, S, const D: usize>(integrator: &I, scene: &S) -> ToleranceLadderRecord
 where
-    I: crate::study::AdaptiveIntegrator,
+    I: crate::scheme::AdaptiveIntegrator,
     S: Scene<D>,
 {
     let record = adaptive_ladder(integrator, scene);
@@ -124,7 +124,7 @@ pub fn assert_adaptive_claim(record: &ToleranceLadderRecord, claim: crate::study
 /// with the default spec; panics if it cannot run.
 pub fn adaptive_ladder<I, S, const D: usize>(integrator: &I, scene: &S) -> ToleranceLadderRecord
 where
-    I: crate::study::AdaptiveIntegrator,
+    I: crate::scheme::AdaptiveIntegrator,
     S: Scene<D>,
 {
     study(tolerance_ladder(
@@ -144,7 +144,7 @@ pub fn assert_adaptive_pinned<I, S, const D: usize>(
     dir: impl AsRef<std::path::Path>,
 ) -> crate::study::AdaptivePinOutcome
 where
-    I: crate::study::AdaptiveIntegrator,
+    I: crate::scheme::AdaptiveIntegrator,
     S: Scene<D>,
 {
     crate::study::adaptive::check_adaptive_pin(integrator, scene, record, dir.as_ref())
@@ -264,7 +264,7 @@ macro_rules! guard_claims {
 /// three (`dprkn6::kepler_eccentric::exponent`), as [`guard_claims!`] does
 /// for a fixed-step scheme: `exponent` (the global error follows
 /// `TOL^(p/(q+1))`), `error_factor` (within the stated factor of the
-/// tolerance, where one is stated with [`crate::study::adaptive::AdaptiveClaims::within`]),
+/// tolerance, where one is stated with [`crate::scheme::AdaptiveClaims::within`]),
 /// `cost` (the accepted steps grow no faster than the controller allows),
 /// `evaluations` (what it reports it spent equals the calls counted),
 /// `energy` and `round_trip` (against the geometric claims) and `pinned`
@@ -274,7 +274,7 @@ macro_rules! guard_claims {
 ///
 /// ```
 /// # mod doc {
-/// use stepladder::study::DPRKN6_ADAPTIVE;
+/// use stepladder::scheme::DPRKN6_ADAPTIVE;
 /// use stepladder::scene::KeplerEccentric;
 ///
 /// stepladder::guard_adaptive! {

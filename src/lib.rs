@@ -92,8 +92,10 @@ pub use nalgebra;
 pub use maths::conditions;
 
 // The floors under the studies and the machinery that runs them: public only
-// so that the lab (corpus, suites, report) and the harness tests can reach
-// them, and not part of the API.
+// so that `internals`, the one door the lab (corpus, suites, report), the
+// tests and the audit use, can name them; not part of the API.
+#[doc(hidden)]
+pub mod internals;
 #[doc(hidden)]
 pub mod ladder;
 #[doc(hidden)]

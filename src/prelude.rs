@@ -31,7 +31,10 @@ pub use crate::guard::{
 pub use crate::scene::{
     FromPotential, Harmonic, KeplerCircular, KeplerEccentric, Potential, Scene,
 };
-pub use crate::scheme::{BlackBox, Force, OneStep, Scheme, SchemeMeta, Solve, StepFailure};
+pub use crate::scheme::{
+    AdaptiveBlackBox, AdaptiveClaims, BlackBox, Force, OneStep, Scheme, SchemeMeta, Solve,
+    StepFailure,
+};
 pub use crate::state::{Real, State};
-pub use crate::study::{AdaptiveBlackBox, AdaptiveClaims, Verdict, claims};
+pub use crate::study::{Verdict, claims};
 pub use crate::{guard_adaptive, guard_claims};

@@ -68,6 +68,11 @@ impl Outcome {
         matches!(self, Outcome::Failed { failure, .. } if failure.panicked())
     }
 
+    /// True for a failure no step size excuses ([`StepFailure::defect`]).
+    pub fn defect(&self) -> bool {
+        matches!(self, Outcome::Failed { failure, .. } if failure.defect())
+    }
+
     /// Where a run stopped and why, without the step size: `step 4 (t =
     /// 28): v[0] = NaN`.
     pub fn where_and_why(&self) -> String {
@@ -264,6 +269,44 @@ pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, String> {
             "a panic whose payload is not text".to_string()
         }
     })
+}
+
+/// Most step times a rung is compared at: every step up to this many steps,
+/// else this many equally spaced ones (and `t_end`). The largest distance
+/// over them follows the error's law exactly as the largest over every step
+/// does, and 4096 times over 2 sqrt(2) periods resolve an error that varies
+/// along the orbit to well within a percent.
+pub const COMPARISONS: u64 = 4096;
+
+/// The step numbers at which a rung of `steps` steps is compared.
+pub(crate) fn comparison_steps(steps: u64) -> impl Iterator<Item = u64> {
+    let count = steps.min(COMPARISONS);
+    (0..=count).map(move |j| j * steps / count)
+}
+
+/// The error of one rung measured as the order study measures it against
+/// an exact solution: the largest phase-space distance to it at the
+/// comparison steps of `steps` steps over `t_end`. `None` when the scene has
+/// no exact solution or the run does not complete.
+pub fn exact_rung_error<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    t_end: f64,
+    steps: u64,
+) -> Option<f64> {
+    scene.exact(0.0)?;
+    let h = t_end / steps as f64;
+    let mut at = comparison_steps(steps).peekable();
+    let mut worst = 0.0f64;
+    let outcome = integrate(scheme, scene, &scene.initial(), h, steps, |n, _, s| {
+        if at.next_if_eq(&n).is_some() {
+            let t = if n == steps { t_end } else { n as f64 * h };
+            if let Some(exact) = scene.exact(t) {
+                worst = worst.max(scene.phase_distance(s, &exact));
+            }
+        }
+    });
+    outcome.completed().then_some(worst)
 }
 
 #[cfg(test)]

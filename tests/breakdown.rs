@@ -9,10 +9,11 @@
 
 use stepladder::prelude::*;
 use stepladder::scene::{Anharmonic, Pleiades};
+use stepladder::scheme::Advance;
 use stepladder::scheme::{Euler, Leapfrog};
 use stepladder::study::{
-    AdaptiveClaim, Advance, DropReason, EnergySpec, OrderSpec, ReverseSpec, SymplecticSpec,
-    energy_drift, evaluations, global_order, reversibility, symplecticity,
+    AdaptiveClaim, DropReason, EnergySpec, OrderSpec, ReverseSpec, SymplecticSpec, energy_drift,
+    evaluations, global_order, reversibility, symplecticity,
 };
 
 /// Velocity Verlet on slices, as a user's crate might write it, in `f64`

@@ -4,11 +4,12 @@
 
 use stepladder::guard::{assert_adaptive_claim, assert_claims, assert_order};
 use stepladder::scene::{Anharmonic, Harmonic, KeplerCircular};
+use stepladder::scheme::DPRKN8_ADAPTIVE;
 use stepladder::scheme::{DPRKN8, Euler, Leapfrog, VELOCITY_VERLET};
 use stepladder::study::{
-    AdaptiveClaim, ClaimVerdict, DPRKN8_ADAPTIVE, EnergySpec, OrderSpec, ReverseSpec,
-    SymplecticSpec, ToleranceLadderSpec, Verdict, claims, energy_drift, evaluations, global_order,
-    reversibility, symplecticity, tolerance_ladder,
+    AdaptiveClaim, ClaimVerdict, EnergySpec, OrderSpec, ReverseSpec, SymplecticSpec,
+    ToleranceLadderSpec, Verdict, claims, energy_drift, evaluations, global_order, reversibility,
+    symplecticity, tolerance_ladder,
 };
 
 fn panics(f: impl FnOnce() + std::panic::UnwindSafe) -> String {
@@ -46,7 +47,7 @@ fn one_call_returns_the_verdict_of_every_study() {
         evaluations(
             &Euler,
             &scene,
-            stepladder::study::cost::evaluations::counting_step(&scene),
+            stepladder::internals::cost::evaluations::counting_step(&scene),
         )
         .verdict,
     ];

@@ -205,3 +205,73 @@ fn the_public_surface_is_what_the_snapshot_shows() {
     settings.set_prepend_module_to_snapshot(false);
     settings.bind(|| insta::assert_snapshot!("public_surface", listing));
 }
+
+/// The crate's inner modules are public only so that `internals` can name
+/// them: every other crate of the repository (the lab, its tests, the
+/// downstream crate, the audit) and the core's own integration tests and
+/// benches reach them through `stepladder::internals::` and no other path.
+#[test]
+fn code_outside_the_core_reaches_the_inner_modules_through_one_door() {
+    const INNER: [&str; 17] = [
+        "ladder::",
+        "maths::",
+        "parallel::",
+        "run::",
+        "tolerance::",
+        "wording::",
+        "scheme::compensated::",
+        "study::accuracy::",
+        "study::adaptive::",
+        "study::breakdown::",
+        "study::case::",
+        "study::cost::",
+        "study::geometry::",
+        "study::hard::",
+        "study::round_off::",
+        "study::stability::",
+        "study::verdict::",
+    ];
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut offending = Vec::new();
+    let mut read = 0;
+    let mut stack: Vec<_> = [
+        "lab",
+        "audit/src",
+        "audit/tests",
+        "downstream",
+        "tests",
+        "benches",
+    ]
+    .iter()
+    .map(|d| root.join(d))
+    .collect();
+    while let Some(path) = stack.pop() {
+        if path.is_dir() {
+            if path.ends_with("target") {
+                continue;
+            }
+            for entry in std::fs::read_dir(&path).unwrap() {
+                stack.push(entry.unwrap().path());
+            }
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            read += 1;
+            let text = std::fs::read_to_string(&path).unwrap();
+            for (n, line) in text.lines().enumerate() {
+                // a bare module in a `use` ends in `;`: read it as `::`
+                let line = line.replace(';', "::");
+                if INNER
+                    .iter()
+                    .any(|m| line.contains(&format!("stepladder::{m}")))
+                {
+                    offending.push(format!("{}:{}: {}", path.display(), n + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(read > 50, "only {read} source files found");
+    assert!(
+        offending.is_empty(),
+        "inner modules reached past `internals`:\n{}",
+        offending.join("\n")
+    );
+}

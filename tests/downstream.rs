@@ -4,10 +4,10 @@
 
 use nalgebra::{SVector, Vector1};
 use stepladder::guard;
+use stepladder::internals::accuracy::order::{OrderSpec, Reference, global_order};
 use stepladder::scene::{Harmonic, KeplerCircular, Scene, SceneMeta};
 use stepladder::scheme::{Scheme, SchemeMeta, StepFailure};
 use stepladder::state::{Real, State};
-use stepladder::study::accuracy::order::{OrderSpec, Reference, global_order};
 
 /// The user's own velocity Verlet, written out by hand with a flag to plant
 /// the classic bug of a full first kick instead of a half one.

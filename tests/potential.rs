@@ -4,7 +4,7 @@
 //! `f32`.
 
 use std::f64::consts::PI;
-use stepladder::maths::tangent::acceleration_jacobian;
+use stepladder::internals::maths::tangent::acceleration_jacobian;
 use stepladder::nalgebra::SVector;
 use stepladder::prelude::*;
 use stepladder::scene::SceneMeta;

@@ -5,8 +5,8 @@
 use nalgebra::SVector;
 use std::cell::Cell;
 use std::ops::ControlFlow;
-use stepladder::study::adaptive::{Advance, RunEnd};
 use stepladder::scheme::Force;
+use stepladder::scheme::{Advance, RunEnd};
 
 /// The scene dimensions the glue instantiates its fixed-size types for
 /// (the oscillator is 1, the Kepler orbits 2).

@@ -13,17 +13,16 @@ pub mod glue;
 pub mod methods;
 pub mod report;
 
-use stepladder::study::Verdict;
-use stepladder::study::accuracy::order::{OrderSpec, global_order};
-use stepladder::study::adaptive::{
-    AdaptiveClaims, AdaptiveIntegrator, ToleranceLadderSpec, tolerance_ladder,
-};
-use stepladder::study::cost::evaluations::{counting_step, evaluations};
-use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
-use stepladder::study::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
 use stepladder::scene::{Harmonic, KeplerEccentric, Scene};
 use stepladder::scheme::Scheme;
+use stepladder::scheme::{AdaptiveClaims, AdaptiveIntegrator};
+use stepladder::study::Verdict;
+use stepladder::internals::accuracy::order::{OrderSpec, global_order};
+use stepladder::internals::adaptive::{ToleranceLadderSpec, tolerance_ladder};
+use stepladder::internals::cost::evaluations::{counting_step, evaluations};
+use stepladder::internals::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::internals::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::internals::geometry::symplectic::{SymplecticSpec, symplecticity};
 
 /// The words in which a crate states a property of a method, quoted, and
 /// where they stand in its published source (`crate-version/path:line`, or
@@ -187,7 +186,7 @@ pub struct FixedRow {
     pub reversible_measured: bool,
     pub energy: Verdict,
     pub energy_growth: Option<f64>,
-    pub energy_class: Option<stepladder::study::geometry::energy::EnergyClass>,
+    pub energy_class: Option<stepladder::internals::geometry::energy::EnergyClass>,
     pub evaluations: Verdict,
     pub per_step: f64,
     /// Each study's failure, if any, in [`ClaimVerdicts`] order.
@@ -331,7 +330,7 @@ fn adaptive_row<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     let (evals, accepted) = r
         .points
         .iter()
-        .filter(|p| p.end == stepladder::study::adaptive::RunEnd::Reached)
+        .filter(|p| p.end == stepladder::scheme::RunEnd::Reached)
         .fold((0u64, 0u64), |(e, a), p| {
             (e + p.evaluations, a + p.accepted)
         });
@@ -341,12 +340,12 @@ fn adaptive_row<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     let loosest = r
         .points
         .iter()
-        .position(|p| p.end == stepladder::study::adaptive::RunEnd::Reached && p.accepted > 0);
+        .position(|p| p.end == stepladder::scheme::RunEnd::Reached && p.accepted > 0);
     let (step_exponent, step_exponent_is_bound) = match loosest {
         Some(i) if i + 1 < r.points.len() && r.points[i + 1].accepted > 0 => {
             let (a, b) = (&r.points[i], &r.points[i + 1]);
             let s = (b.accepted as f64 / a.accepted as f64).ln() / (a.tolerance / b.tolerance).ln();
-            let bound = b.end != stepladder::study::adaptive::RunEnd::Reached;
+            let bound = b.end != stepladder::scheme::RunEnd::Reached;
             // a bound is only evidence of growth, never of its absence
             (Some(s), bound)
         }
@@ -363,7 +362,7 @@ fn adaptive_row<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         unfinished: r
             .points
             .iter()
-            .filter(|p| p.end != stepladder::study::adaptive::RunEnd::Reached)
+            .filter(|p| p.end != stepladder::scheme::RunEnd::Reached)
             .count(),
         verdict: r.verdict,
         reason: r.reason,
@@ -446,7 +445,12 @@ pub fn disagreements(audit: &Audit) -> Vec<String> {
                             got.name(),
                             want.name(),
                             a.expected.why,
-                            row.reasons.iter().flatten().cloned().collect::<Vec<_>>().join(" | ")
+                            row.reasons
+                                .iter()
+                                .flatten()
+                                .cloned()
+                                .collect::<Vec<_>>()
+                                .join(" | ")
                         ));
                     }
                 }

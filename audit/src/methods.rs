@@ -12,18 +12,18 @@
 //! check calling the crate directly in `tests/independent.rs`, named beside
 //! each figure it reproduces.
 
-use crate::glue::{self, OsPair, UtsuroiFixed};
 use crate::Prop::{Energy, Estimate, Evaluations, Order, Symmetric, Symplectic};
+use crate::glue::{self, OsPair, UtsuroiFixed};
 use crate::{
-    AdaptiveExpectation, Audit, Evidence, FixedExpectation, Property, Provenance,
-    audit_adaptive, audit_fixed, said, said_and, unsaid,
+    AdaptiveExpectation, Audit, Evidence, FixedExpectation, Property, Provenance, audit_adaptive,
+    audit_fixed, said, said_and, unsaid,
 };
 use differential_equations::methods::SymplecticIntegrator;
 use differential_equations::prelude::ExplicitRungeKutta;
 use peroxide::fuga::{DP45, GL4, ImplicitSolver, RALS3, RALS4, RK4, RK5, TSIT45};
-use stepladder::study::Verdict::{Fail, Inconclusive, NotClaimed, Pass};
-use stepladder::study::adaptive::{AdaptiveBlackBox, AdaptiveClaims};
+use stepladder::scheme::{AdaptiveBlackBox, AdaptiveClaims};
 use stepladder::scheme::{BlackBox, SchemeMeta};
+use stepladder::study::Verdict::{Fail, Inconclusive, NotClaimed, Pass};
 
 /// Claims of a fixed-step method.
 const fn claims(
@@ -78,9 +78,18 @@ const fn except(
 /// that is neither: the studies test "not symplectic, not symmetric", which
 /// promises nothing, and report what they measure.
 const RK_NOT_GEOMETRIC: [Property; 3] = [
-    unsaid(Symplectic, "explicit Runge-Kutta: not symplectic in theory (tested: no)"),
-    unsaid(Symmetric, "explicit Runge-Kutta: not symmetric in theory (tested: no)"),
-    unsaid(Energy, "tested: drift allowed, as for a scheme neither symplectic nor symmetric"),
+    unsaid(
+        Symplectic,
+        "explicit Runge-Kutta: not symplectic in theory (tested: no)",
+    ),
+    unsaid(
+        Symmetric,
+        "explicit Runge-Kutta: not symmetric in theory (tested: no)",
+    ),
+    unsaid(
+        Energy,
+        "tested: drift allowed, as for a scheme neither symplectic nor symmetric",
+    ),
 ];
 
 /// What is tested of a Gauss-Legendre method the crate claims only the
@@ -90,8 +99,14 @@ const GL4_NOT_CLAIMED: [Property; 4] = [
         Symplectic,
         "not claimed (the doc's only other statement is \"better stability properties compared to explicit methods\", ode.rs:1204); tested: yes, as Gauss collocation is symplectic in theory",
     ),
-    unsaid(Symmetric, "not claimed; tested: yes, as Gauss collocation is symmetric in theory"),
-    unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
+    unsaid(
+        Symmetric,
+        "not claimed; tested: yes, as Gauss collocation is symmetric in theory",
+    ),
+    unsaid(
+        Energy,
+        "not claimed; tested: bounded, as follows for a symplectic, symmetric map",
+    ),
     unsaid(
         Evaluations,
         "not claimed; shown, not judged (an implicit method's iterations are its own); 2 = stages",
@@ -105,21 +120,35 @@ pub fn utsuroi_stormer_verlet() -> Audit {
         Provenance {
             krate: "utsuroi 0.2.0",
             method: "StormerVerlet",
-            properties: const { &[
-                said(Order, "A 2nd-order symplectic method for separable Hamiltonian systems", "utsuroi-0.2.0/src/solver/verlet.rs:9"),
-                said(Symplectic, "A 2nd-order symplectic method for separable Hamiltonian systems", "utsuroi-0.2.0/src/solver/verlet.rs:9"),
-                said_and(
-                    Symmetric,
-                    "Verlet is time-reversible: N steps forward + N steps backward = identity.",
-                    "utsuroi-0.2.0/src/solver/verlet.rs:466",
-                    "stated on the crate's own test, not in its API docs",
-                ),
-                said(Energy, "has excellent long-term energy conservation properties", "utsuroi-0.2.0/src/solver/verlet.rs:11-12"),
-                unsaid(
-                    Evaluations,
-                    "not claimed; tested: 2, the two kicks of the kick-drift-kick form the doc writes out (verlet.rs:20-23); 1 if the last force were kept for the next step",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "A 2nd-order symplectic method for separable Hamiltonian systems",
+                        "utsuroi-0.2.0/src/solver/verlet.rs:9",
+                    ),
+                    said(
+                        Symplectic,
+                        "A 2nd-order symplectic method for separable Hamiltonian systems",
+                        "utsuroi-0.2.0/src/solver/verlet.rs:9",
+                    ),
+                    said_and(
+                        Symmetric,
+                        "Verlet is time-reversible: N steps forward + N steps backward = identity.",
+                        "utsuroi-0.2.0/src/solver/verlet.rs:466",
+                        "stated on the crate's own test, not in its API docs",
+                    ),
+                    said(
+                        Energy,
+                        "has excellent long-term energy conservation properties",
+                        "utsuroi-0.2.0/src/solver/verlet.rs:11-12",
+                    ),
+                    unsaid(
+                        Evaluations,
+                        "not claimed; tested: 2, the two kicks of the kick-drift-kick form the doc writes out (verlet.rs:20-23); 1 if the last force were kept for the next step",
+                    ),
+                ]
+            },
             minimum_evaluations: 1,
             test: "utsuroi_stormer_verlet",
         },
@@ -163,16 +192,31 @@ utsuroi_yoshida!(
     6,
     3,
     &[
-        said(Order, "4th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:76"),
-        said(Symplectic, "4th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:76"),
+        said(
+            Order,
+            "4th-order accuracy with symplectic structure preservation.",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:76"
+        ),
+        said(
+            Symplectic,
+            "4th-order accuracy with symplectic structure preservation.",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:76"
+        ),
         said_and(
             Symmetric,
             "fn yoshida4_time_reversible(",
             "utsuroi-0.2.0/src/solver/yoshida.rs:443",
             "the name of the crate's own test, under \"// --- Time-reversibility ---\" (yoshida.rs:415); not in its API docs",
         ),
-        unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
-        said(Evaluations, "Cost: 6 force evaluations per step (3 Verlet substeps × 2).", "utsuroi-0.2.0/src/solver/yoshida.rs:77"),
+        unsaid(
+            Energy,
+            "not claimed; tested: bounded, as follows for a symplectic, symmetric map"
+        ),
+        said(
+            Evaluations,
+            "Cost: 6 force evaluations per step (3 Verlet substeps × 2).",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:77"
+        ),
     ],
     "composition check of the published weights: sum g = 1, sum g^3 = 0"
 );
@@ -184,16 +228,31 @@ utsuroi_yoshida!(
     14,
     7,
     &[
-        said(Order, "6th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:83"),
-        said(Symplectic, "6th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:83"),
+        said(
+            Order,
+            "6th-order accuracy with symplectic structure preservation.",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:83"
+        ),
+        said(
+            Symplectic,
+            "6th-order accuracy with symplectic structure preservation.",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:83"
+        ),
         said_and(
             Symmetric,
             "fn yoshida6_time_reversible(",
             "utsuroi-0.2.0/src/solver/yoshida.rs:458",
             "the name of the crate's own test, under \"// --- Time-reversibility ---\" (yoshida.rs:415); not in its API docs",
         ),
-        unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
-        said(Evaluations, "Cost: 14 force evaluations per step.", "utsuroi-0.2.0/src/solver/yoshida.rs:84"),
+        unsaid(
+            Energy,
+            "not claimed; tested: bounded, as follows for a symplectic, symmetric map"
+        ),
+        said(
+            Evaluations,
+            "Cost: 14 force evaluations per step.",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:84"
+        ),
     ],
     "composition check of the published weights: order 6"
 );
@@ -205,16 +264,31 @@ utsuroi_yoshida!(
     30,
     15,
     &[
-        said(Order, "8th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:90"),
-        said(Symplectic, "8th-order accuracy with symplectic structure preservation.", "utsuroi-0.2.0/src/solver/yoshida.rs:90"),
+        said(
+            Order,
+            "8th-order accuracy with symplectic structure preservation.",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:90"
+        ),
+        said(
+            Symplectic,
+            "8th-order accuracy with symplectic structure preservation.",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:90"
+        ),
         said_and(
             Symmetric,
             "fn yoshida8_time_reversible(",
             "utsuroi-0.2.0/src/solver/yoshida.rs:473",
             "the name of the crate's own test, under \"// --- Time-reversibility ---\" (yoshida.rs:415); not in its API docs",
         ),
-        unsaid(Energy, "not claimed; tested: bounded, as follows for a symplectic, symmetric map"),
-        said(Evaluations, "Cost: 30 force evaluations per step.", "utsuroi-0.2.0/src/solver/yoshida.rs:91"),
+        unsaid(
+            Energy,
+            "not claimed; tested: bounded, as follows for a symplectic, symmetric map"
+        ),
+        said(
+            Evaluations,
+            "Cost: 30 force evaluations per step.",
+            "utsuroi-0.2.0/src/solver/yoshida.rs:91"
+        ),
     ],
     "composition check of the published weights: order 8"
 );
@@ -224,21 +298,27 @@ pub fn utsuroi_rk4() -> Audit {
         Provenance {
             krate: "utsuroi 0.2.0",
             method: "Rk4",
-            properties: const { &[
-                said(Order, "Classic 4th-order Runge-Kutta integrator.", "utsuroi-0.2.0/src/solver/rk4.rs:3"),
-                RK_NOT_GEOMETRIC[0],
-                said_and(
-                    Symmetric,
-                    "RK4 is NOT time-reversible: forward+backward does NOT recover initial state.",
-                    "utsuroi-0.2.0/src/comparison.rs:19",
-                    "a claim that it is not (tested: no), on the crate's own test",
-                ),
-                RK_NOT_GEOMETRIC[2],
-                unsaid(
-                    Evaluations,
-                    "not claimed as a count; tested: 4, the stages k1..k4 the doc writes out (rk4.rs:9-13)",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Classic 4th-order Runge-Kutta integrator.",
+                        "utsuroi-0.2.0/src/solver/rk4.rs:3",
+                    ),
+                    RK_NOT_GEOMETRIC[0],
+                    said_and(
+                        Symmetric,
+                        "RK4 is NOT time-reversible: forward+backward does NOT recover initial state.",
+                        "utsuroi-0.2.0/src/comparison.rs:19",
+                        "a claim that it is not (tested: no), on the crate's own test",
+                    ),
+                    RK_NOT_GEOMETRIC[2],
+                    unsaid(
+                        Evaluations,
+                        "not claimed as a count; tested: 4, the stages k1..k4 the doc writes out (rk4.rs:9-13)",
+                    ),
+                ]
+            },
             minimum_evaluations: 4,
             test: "utsuroi_rk4",
         },
@@ -257,16 +337,26 @@ pub fn utsuroi_dormand_prince() -> Audit {
         Provenance {
             krate: "utsuroi 0.2.0",
             method: "DormandPrince (stepper)",
-            properties: const { &[
-                said(Order, "The 5th-order solution is propagated (local extrapolation)", "utsuroi-0.2.0/src/solver/dp45/mod.rs:15-16"),
-                said(Estimate, "the 4th-order solution is used only for error estimation.", "utsuroi-0.2.0/src/solver/dp45/mod.rs:16-17"),
-                said_and(
-                    Evaluations,
-                    "The FSAL (First Same As Last) property allows reuse of the 7th stage derivative as the 1st stage of the next step.",
-                    "utsuroi-0.2.0/src/solver/dp45/mod.rs:17-18",
-                    "7 stages less the reused one: 6 per step; shown per accepted step, not judged (the stepper reports no count)",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "The 5th-order solution is propagated (local extrapolation)",
+                        "utsuroi-0.2.0/src/solver/dp45/mod.rs:15-16",
+                    ),
+                    said(
+                        Estimate,
+                        "the 4th-order solution is used only for error estimation.",
+                        "utsuroi-0.2.0/src/solver/dp45/mod.rs:16-17",
+                    ),
+                    said_and(
+                        Evaluations,
+                        "The FSAL (First Same As Last) property allows reuse of the 7th stage derivative as the 1st stage of the next step.",
+                        "utsuroi-0.2.0/src/solver/dp45/mod.rs:17-18",
+                        "7 stages less the reused one: 6 per step; shown per accepted step, not judged (the stepper reports no count)",
+                    ),
+                ]
+            },
             minimum_evaluations: 6,
             test: "utsuroi_dormand_prince",
         },
@@ -291,23 +381,33 @@ pub fn de_velocity_verlet() -> Audit {
         Provenance {
             krate: "differential-equations 0.7.0",
             method: "SymplecticIntegrator::velocity_verlet",
-            properties: const { &[
-                said(Order, "Velocity Verlet (2nd Order Symplectic Integrator).", "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:16"),
-                said(Symplectic, "Velocity Verlet (2nd Order Symplectic Integrator).", "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:16"),
-                unsaid(
-                    Symmetric,
-                    "not claimed; tested: yes, as the documented table c = (0, 1), d = (1/2, 1/2) (velocity_verlet.rs:21-23) is palindromic",
-                ),
-                said(
-                    Energy,
-                    "Ideal for conservative physics and orbital mechanics where energy conservation over long periods is required.",
-                    "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:18-19",
-                ),
-                unsaid(
-                    Evaluations,
-                    "not claimed (the crate's own counter, `evals.function += 1` after each `ode.diff`, reports what it spends); tested: 2, the two kicks d1, d2 of the documented table; 1 if the last force were kept for the next step",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Velocity Verlet (2nd Order Symplectic Integrator).",
+                        "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:16",
+                    ),
+                    said(
+                        Symplectic,
+                        "Velocity Verlet (2nd Order Symplectic Integrator).",
+                        "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:16",
+                    ),
+                    unsaid(
+                        Symmetric,
+                        "not claimed; tested: yes, as the documented table c = (0, 1), d = (1/2, 1/2) (velocity_verlet.rs:21-23) is palindromic",
+                    ),
+                    said(
+                        Energy,
+                        "Ideal for conservative physics and orbital mechanics where energy conservation over long periods is required.",
+                        "differential-equations-0.7.0/src/methods/symplectic/velocity_verlet.rs:18-19",
+                    ),
+                    unsaid(
+                        Evaluations,
+                        "not claimed (the crate's own counter, `evals.function += 1` after each `ode.diff`, reports what it spends); tested: 2, the two kicks d1, d2 of the documented table; 1 if the last force were kept for the next step",
+                    ),
+                ]
+            },
             minimum_evaluations: 1,
             test: "de_velocity_verlet",
         },
@@ -341,23 +441,33 @@ pub fn de_ruth_forest() -> Audit {
         Provenance {
             krate: "differential-equations 0.7.0",
             method: "SymplecticIntegrator::ruth_forest",
-            properties: const { &[
-                said(Order, "Ruth-Forest (4th Order Symplectic Integrator).", "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:16"),
-                said(Symplectic, "Ruth-Forest (4th Order Symplectic Integrator).", "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:16"),
-                unsaid(
-                    Symmetric,
-                    "not claimed; tested: yes, as the Forest-Ruth composition is palindromic",
-                ),
-                said(
-                    Energy,
-                    "Ideal for conservative physics and orbital mechanics where energy conservation over long periods is required.",
-                    "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:18-19",
-                ),
-                unsaid(
-                    Evaluations,
-                    "not claimed (the crate's own counter reports what it spends); tested: 3, the nonzero kicks of its table d = (theta, 1 - 2 theta, theta, 0) (ruth_forest.rs:36)",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Ruth-Forest (4th Order Symplectic Integrator).",
+                        "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:16",
+                    ),
+                    said(
+                        Symplectic,
+                        "Ruth-Forest (4th Order Symplectic Integrator).",
+                        "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:16",
+                    ),
+                    unsaid(
+                        Symmetric,
+                        "not claimed; tested: yes, as the Forest-Ruth composition is palindromic",
+                    ),
+                    said(
+                        Energy,
+                        "Ideal for conservative physics and orbital mechanics where energy conservation over long periods is required.",
+                        "differential-equations-0.7.0/src/methods/symplectic/ruth_forest.rs:18-19",
+                    ),
+                    unsaid(
+                        Evaluations,
+                        "not claimed (the crate's own counter reports what it spends); tested: 3, the nonzero kicks of its table d = (theta, 1 - 2 theta, theta, 0) (ruth_forest.rs:36)",
+                    ),
+                ]
+            },
             minimum_evaluations: 3,
             test: "de_ruth_forest",
         },
@@ -391,13 +501,23 @@ pub fn de_rk4() -> Audit {
         Provenance {
             krate: "differential-equations 0.7.0",
             method: "ExplicitRungeKutta::rk4",
-            properties: const { &[
-                said(Order, "Creates the classical 4th order Runge-Kutta method.", "differential-equations-0.7.0/src/methods/erk/fixed/mod.rs:74"),
-                RK_NOT_GEOMETRIC[0],
-                RK_NOT_GEOMETRIC[1],
-                RK_NOT_GEOMETRIC[2],
-                said(Evaluations, "- Number of stages: 4", "differential-equations-0.7.0/src/tableau/runge_kutta.rs:14"),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Creates the classical 4th order Runge-Kutta method.",
+                        "differential-equations-0.7.0/src/methods/erk/fixed/mod.rs:74",
+                    ),
+                    RK_NOT_GEOMETRIC[0],
+                    RK_NOT_GEOMETRIC[1],
+                    RK_NOT_GEOMETRIC[2],
+                    said(
+                        Evaluations,
+                        "- Number of stages: 4",
+                        "differential-equations-0.7.0/src/tableau/runge_kutta.rs:14",
+                    ),
+                ]
+            },
             minimum_evaluations: 4,
             test: "de_rk4",
         },
@@ -429,16 +549,26 @@ pub fn de_dopri5() -> Audit {
         Provenance {
             krate: "differential-equations 0.7.0",
             method: "ExplicitRungeKutta::dopri5",
-            properties: const { &[
-                said(Order, "Creates the DOPRI5 method (5th order, 7 stages).", "differential-equations-0.7.0/src/methods/erk/dormandprince/mod.rs:57"),
-                said(Estimate, "- Embedded order: 4 (for error estimation)", "differential-equations-0.7.0/src/tableau/dorman_prince.rs:11"),
-                said_and(
-                    Evaluations,
-                    "Creates the DOPRI5 method (5th order, 7 stages).",
-                    "differential-equations-0.7.0/src/methods/erk/dormandprince/mod.rs:57",
-                    "7 stages; shown per accepted step from the crate's own count (Solution.evals.function), checked against the calls, not judged",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Creates the DOPRI5 method (5th order, 7 stages).",
+                        "differential-equations-0.7.0/src/methods/erk/dormandprince/mod.rs:57",
+                    ),
+                    said(
+                        Estimate,
+                        "- Embedded order: 4 (for error estimation)",
+                        "differential-equations-0.7.0/src/tableau/dorman_prince.rs:11",
+                    ),
+                    said_and(
+                        Evaluations,
+                        "Creates the DOPRI5 method (5th order, 7 stages).",
+                        "differential-equations-0.7.0/src/methods/erk/dormandprince/mod.rs:57",
+                        "7 stages; shown per accepted step from the crate's own count (Solution.evals.function), checked against the calls, not judged",
+                    ),
+                ]
+            },
             minimum_evaluations: 6,
             test: "de_dopri5",
         },
@@ -459,16 +589,22 @@ pub fn os_rk4() -> Audit {
         Provenance {
             krate: "ode_solvers 0.6.2",
             method: "Rk4",
-            properties: const { &[
-                said(Order, "Explicit Runge-Kutta method of order 4 with fixed step size.", "ode_solvers-0.6.2/src/rk4.rs:1"),
-                RK_NOT_GEOMETRIC[0],
-                RK_NOT_GEOMETRIC[1],
-                RK_NOT_GEOMETRIC[2],
-                unsaid(
-                    Evaluations,
-                    "not claimed in the docs (its counter adds 4 a step, rk4.rs:92); tested: 4, the stages of the classical method",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Explicit Runge-Kutta method of order 4 with fixed step size.",
+                        "ode_solvers-0.6.2/src/rk4.rs:1",
+                    ),
+                    RK_NOT_GEOMETRIC[0],
+                    RK_NOT_GEOMETRIC[1],
+                    RK_NOT_GEOMETRIC[2],
+                    unsaid(
+                        Evaluations,
+                        "not claimed in the docs (its counter adds 4 a step, rk4.rs:92); tested: 4, the stages of the classical method",
+                    ),
+                ]
+            },
             minimum_evaluations: 4,
             test: "os_rk4",
         },
@@ -493,14 +629,24 @@ pub fn os_dopri5() -> Audit {
         Provenance {
             krate: "ode_solvers 0.6.2",
             method: "Dopri5",
-            properties: const { &[
-                said(Order, "Explicit Runge-Kutta method with Dormand-Prince coefficients of order 5(4) and dense output of order 4.", "ode_solvers-0.6.2/src/dopri5.rs:1"),
-                said(Estimate, "| Dormand-Prince | Dopri5 | 5     | 4                    | 4                  |", "ode_solvers-0.6.2/README.md:73"),
-                unsaid(
-                    Evaluations,
-                    "not claimed; shown per accepted step from the crate's own count (Stats.num_eval), checked against the calls, not judged",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Explicit Runge-Kutta method with Dormand-Prince coefficients of order 5(4) and dense output of order 4.",
+                        "ode_solvers-0.6.2/src/dopri5.rs:1",
+                    ),
+                    said(
+                        Estimate,
+                        "| Dormand-Prince | Dopri5 | 5     | 4                    | 4                  |",
+                        "ode_solvers-0.6.2/README.md:73",
+                    ),
+                    unsaid(
+                        Evaluations,
+                        "not claimed; shown per accepted step from the crate's own count (Stats.num_eval), checked against the calls, not judged",
+                    ),
+                ]
+            },
             minimum_evaluations: 6,
             test: "os_dopri5",
         },
@@ -530,14 +676,24 @@ pub fn os_dop853() -> Audit {
         Provenance {
             krate: "ode_solvers 0.6.2",
             method: "Dop853",
-            properties: const { &[
-                said(Order, "Explicit Runge-Kutta method with Dormand-Prince coefficients of order 8(5,3) and dense output of order 7.", "ode_solvers-0.6.2/src/dop853.rs:1"),
-                said(Estimate, "| Dormand-Prince | Dop853 | 8     | (5, 3)               | 7                  |", "ode_solvers-0.6.2/README.md:74"),
-                unsaid(
-                    Evaluations,
-                    "not claimed; shown per accepted step from the crate's own count (Stats.num_eval), checked against the calls, not judged",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Explicit Runge-Kutta method with Dormand-Prince coefficients of order 8(5,3) and dense output of order 7.",
+                        "ode_solvers-0.6.2/src/dop853.rs:1",
+                    ),
+                    said(
+                        Estimate,
+                        "| Dormand-Prince | Dop853 | 8     | (5, 3)               | 7                  |",
+                        "ode_solvers-0.6.2/README.md:74",
+                    ),
+                    unsaid(
+                        Evaluations,
+                        "not claimed; shown per accepted step from the crate's own count (Stats.num_eval), checked against the calls, not judged",
+                    ),
+                ]
+            },
             minimum_evaluations: 12,
             test: "os_dop853",
         },
@@ -607,11 +763,19 @@ peroxide_fixed!(
     4,
     4,
     &[
-        said(Order, "This integrator uses the classical 4th order Runge-Kutta method to numerically integrate the ODE system.", "peroxide-0.43.1/src/numerical/ode.rs:395"),
+        said(
+            Order,
+            "This integrator uses the classical 4th order Runge-Kutta method to numerically integrate the ODE system.",
+            "peroxide-0.43.1/src/numerical/ode.rs:395"
+        ),
         RK_NOT_GEOMETRIC[0],
         RK_NOT_GEOMETRIC[1],
         RK_NOT_GEOMETRIC[2],
-        said(Evaluations, "It calculates four intermediate values (k1, k2, k3, k4) to estimate the next step solution.", "peroxide-0.43.1/src/numerical/ode.rs:396"),
+        said(
+            Evaluations,
+            "It calculates four intermediate values (k1, k2, k3, k4) to estimate the next step solution.",
+            "peroxide-0.43.1/src/numerical/ode.rs:396"
+        ),
     ],
     holds("Butcher-tree check of the public consts C, A, BU: order 4")
 );
@@ -623,11 +787,18 @@ peroxide_fixed!(
     3,
     3,
     &[
-        said(Order, "Ralston's 3rd order integrator", "peroxide-0.43.1/src/numerical/ode.rs:374"),
+        said(
+            Order,
+            "Ralston's 3rd order integrator",
+            "peroxide-0.43.1/src/numerical/ode.rs:374"
+        ),
         RK_NOT_GEOMETRIC[0],
         RK_NOT_GEOMETRIC[1],
         RK_NOT_GEOMETRIC[2],
-        unsaid(Evaluations, "not claimed; tested: 3, the stages of its tableau (C, A, BU at ode.rs:387-389)"),
+        unsaid(
+            Evaluations,
+            "not claimed; tested: 3, the stages of its tableau (C, A, BU at ode.rs:387-389)"
+        ),
     ],
     holds("Butcher-tree check of the public consts: order 3")
 );
@@ -639,11 +810,18 @@ peroxide_fixed!(
     4,
     4,
     &[
-        said(Order, "This fourth order method is known as minimum truncation error RK4.", "peroxide-0.43.1/src/numerical/ode.rs:414"),
+        said(
+            Order,
+            "This fourth order method is known as minimum truncation error RK4.",
+            "peroxide-0.43.1/src/numerical/ode.rs:414"
+        ),
         RK_NOT_GEOMETRIC[0],
         RK_NOT_GEOMETRIC[1],
         RK_NOT_GEOMETRIC[2],
-        unsaid(Evaluations, "not claimed; tested: 4, the stages of its tableau (ode.rs:424-431)"),
+        unsaid(
+            Evaluations,
+            "not claimed; tested: 4, the stages of its tableau (ode.rs:424-431)"
+        ),
     ],
     except(
         [Fail, Pass, Pass, Pass, Pass],
@@ -662,11 +840,18 @@ peroxide_fixed!(
     5,
     7,
     &[
-        said(Order, "This integrator uses the 5th order Runge-Kutta method to numerically integrate the ODE system.", "peroxide-0.43.1/src/numerical/ode.rs:437"),
+        said(
+            Order,
+            "This integrator uses the 5th order Runge-Kutta method to numerically integrate the ODE system.",
+            "peroxide-0.43.1/src/numerical/ode.rs:437"
+        ),
         RK_NOT_GEOMETRIC[0],
         RK_NOT_GEOMETRIC[1],
         RK_NOT_GEOMETRIC[2],
-        unsaid(Evaluations, "not claimed; tested: 7, the stages of its tableau (ode.rs:447-484)"),
+        unsaid(
+            Evaluations,
+            "not claimed; tested: 7, the stages of its tableau (ode.rs:447-484)"
+        ),
     ],
     except(
         [Fail, Pass, Pass, Pass, Pass],
@@ -689,13 +874,19 @@ pub fn peroxide_gl4_fixed_point() -> Audit {
         Provenance {
             krate: "peroxide 0.43.1",
             method: "GL4 (ImplicitSolver::FixedPoint, the default)",
-            properties: const { &[
-                said(Order, "Gauss-Legendre 4th order integrator.", "peroxide-0.43.1/src/numerical/ode.rs:1200"),
-                GL4_NOT_CLAIMED[0],
-                GL4_NOT_CLAIMED[1],
-                GL4_NOT_CLAIMED[2],
-                GL4_NOT_CLAIMED[3],
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Gauss-Legendre 4th order integrator.",
+                        "peroxide-0.43.1/src/numerical/ode.rs:1200",
+                    ),
+                    GL4_NOT_CLAIMED[0],
+                    GL4_NOT_CLAIMED[1],
+                    GL4_NOT_CLAIMED[2],
+                    GL4_NOT_CLAIMED[3],
+                ]
+            },
             minimum_evaluations: 2,
             test: "peroxide_gl4_fixed_point",
         },
@@ -743,13 +934,19 @@ pub fn peroxide_gl4_broyden() -> Audit {
         Provenance {
             krate: "peroxide 0.43.1",
             method: "GL4 (ImplicitSolver::Broyden)",
-            properties: const { &[
-                said(Order, "Gauss-Legendre 4th order integrator.", "peroxide-0.43.1/src/numerical/ode.rs:1200"),
-                GL4_NOT_CLAIMED[0],
-                GL4_NOT_CLAIMED[1],
-                GL4_NOT_CLAIMED[2],
-                GL4_NOT_CLAIMED[3],
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Gauss-Legendre 4th order integrator.",
+                        "peroxide-0.43.1/src/numerical/ode.rs:1200",
+                    ),
+                    GL4_NOT_CLAIMED[0],
+                    GL4_NOT_CLAIMED[1],
+                    GL4_NOT_CLAIMED[2],
+                    GL4_NOT_CLAIMED[3],
+                ]
+            },
             minimum_evaluations: 2,
             test: "peroxide_gl4_broyden",
         },
@@ -798,11 +995,24 @@ pub fn peroxide_dp45() -> Audit {
         Provenance {
             krate: "peroxide 0.43.1",
             method: "DP45",
-            properties: const { &[
-                said(Order, "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation.", "peroxide-0.43.1/src/numerical/ode.rs:685-686"),
-                said(Estimate, "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation.", "peroxide-0.43.1/src/numerical/ode.rs:685-686"),
-                unsaid(Evaluations, "not claimed, not reported by the crate; shown per accepted step (7: no first-same-as-last reuse), not judged"),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation.",
+                        "peroxide-0.43.1/src/numerical/ode.rs:685-686",
+                    ),
+                    said(
+                        Estimate,
+                        "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation.",
+                        "peroxide-0.43.1/src/numerical/ode.rs:685-686",
+                    ),
+                    unsaid(
+                        Evaluations,
+                        "not claimed, not reported by the crate; shown per accepted step (7: no first-same-as-last reuse), not judged",
+                    ),
+                ]
+            },
             minimum_evaluations: 6,
             test: "peroxide_dp45",
         },
@@ -832,11 +1042,24 @@ pub fn peroxide_tsit45() -> Audit {
         Provenance {
             krate: "peroxide 0.43.1",
             method: "TSIT45",
-            properties: const { &[
-                said(Order, "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation, using the coefficients from Tsitouras (2011).", "peroxide-0.43.1/src/numerical/ode.rs:806-807"),
-                said(Estimate, "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation, using the coefficients from Tsitouras (2011).", "peroxide-0.43.1/src/numerical/ode.rs:806-807"),
-                unsaid(Evaluations, "not claimed, not reported by the crate; shown per accepted step, not judged"),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation, using the coefficients from Tsitouras (2011).",
+                        "peroxide-0.43.1/src/numerical/ode.rs:806-807",
+                    ),
+                    said(
+                        Estimate,
+                        "This is an adaptive step size integrator based on a 5th order Runge-Kutta method with 4th order embedded error estimation, using the coefficients from Tsitouras (2011).",
+                        "peroxide-0.43.1/src/numerical/ode.rs:806-807",
+                    ),
+                    unsaid(
+                        Evaluations,
+                        "not claimed, not reported by the crate; shown per accepted step, not judged",
+                    ),
+                ]
+            },
             minimum_evaluations: 6,
             test: "peroxide_tsit45",
         },
@@ -883,16 +1106,22 @@ pub fn russell_rk4() -> Audit {
         Provenance {
             krate: "russell_ode 5.0.0",
             method: "Method::Rk4 (h_equal)",
-            properties: const { &[
-                said(Order, "\"The\" Runge-Kutta method (explicit, order 4)", "russell_ode-5.0.0/src/enums.rs:82"),
-                RK_NOT_GEOMETRIC[0],
-                RK_NOT_GEOMETRIC[1],
-                RK_NOT_GEOMETRIC[2],
-                unsaid(
-                    Evaluations,
-                    "not claimed; tested: 4, the stages of the classical method its doc cites (HNW I p. 138, enums.rs:84); the crate's own step is counted in `cargo test --release --test independent russell_equal_steps`",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "\"The\" Runge-Kutta method (explicit, order 4)",
+                        "russell_ode-5.0.0/src/enums.rs:82",
+                    ),
+                    RK_NOT_GEOMETRIC[0],
+                    RK_NOT_GEOMETRIC[1],
+                    RK_NOT_GEOMETRIC[2],
+                    unsaid(
+                        Evaluations,
+                        "not claimed; tested: 4, the stages of the classical method its doc cites (HNW I p. 138, enums.rs:84); the crate's own step is counted in `cargo test --release --test independent russell_equal_steps`",
+                    ),
+                ]
+            },
             minimum_evaluations: 4,
             test: "russell_rk4",
         },
@@ -917,16 +1146,26 @@ pub fn russell_dopri5() -> Audit {
         Provenance {
             krate: "russell_ode 5.0.0",
             method: "Method::DoPri5",
-            properties: const { &[
-                said(Order, "Dormand-Prince method (explicit, order 5(4), embedded)", "russell_ode-5.0.0/src/enums.rs:113"),
-                said(Estimate, "For DoPri5(4): q = 4 = min(order(y1), order(y1bar))", "russell_ode-5.0.0/src/enums.rs:9"),
-                said_and(
-                    Evaluations,
-                    "Method::DoPri5     => Information { order: 5, order_of_estimator: 4, implicit: false, embedded: true,  multiple_stages: true,  first_step_same_as_last: true  },",
-                    "russell_ode-5.0.0/src/enums.rs:145",
-                    "first same as last: 6 per step; shown per accepted step from the crate's own count (Stats.n_function), checked against the calls, not judged",
-                ),
-            ] },
+            properties: const {
+                &[
+                    said(
+                        Order,
+                        "Dormand-Prince method (explicit, order 5(4), embedded)",
+                        "russell_ode-5.0.0/src/enums.rs:113",
+                    ),
+                    said(
+                        Estimate,
+                        "For DoPri5(4): q = 4 = min(order(y1), order(y1bar))",
+                        "russell_ode-5.0.0/src/enums.rs:9",
+                    ),
+                    said_and(
+                        Evaluations,
+                        "Method::DoPri5     => Information { order: 5, order_of_estimator: 4, implicit: false, embedded: true,  multiple_stages: true,  first_step_same_as_last: true  },",
+                        "russell_ode-5.0.0/src/enums.rs:145",
+                        "first same as last: 6 per step; shown per accepted step from the crate's own count (Stats.n_function), checked against the calls, not judged",
+                    ),
+                ]
+            },
             minimum_evaluations: 6,
             test: "russell_dopri5",
         },

@@ -45,7 +45,10 @@ fn first_sentence(reason: &str) -> String {
 /// words the value it tests as "claimed", here it is the value tested.
 fn tested_wording(reason: &str) -> String {
     reason
-        .replace("cost figures from the claim", "cost figures from the tested count")
+        .replace(
+            "cost figures from the claim",
+            "cost figures from the tested count",
+        )
         .replace("though claimed", "though tested")
         .replace(" claimed", " tested")
 }
@@ -92,7 +95,11 @@ fn cell(p: &Provenance, prop: Prop, v: Verdict, measured: &str) -> String {
 }
 
 fn is_are(b: bool, word: &str) -> String {
-    if b { word.to_string() } else { format!("not {word}") }
+    if b {
+        word.to_string()
+    } else {
+        format!("not {word}")
+    }
 }
 
 /// The properties of a fixed-step method that failed their test, split
@@ -194,8 +201,18 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
                         row.ci95
                             .map_or("-".into(), |[a, b]| format!("{a:.2}, {b:.2}")),
                         cell(p, Prop::Order, row.order, "-"),
-                        cell(p, Prop::Symplectic, row.symplectic, &is_are(row.symplectic_measured, "symplectic")),
-                        cell(p, Prop::Symmetric, row.reversible, &is_are(row.reversible_measured, "symmetric")),
+                        cell(
+                            p,
+                            Prop::Symplectic,
+                            row.symplectic,
+                            &is_are(row.symplectic_measured, "symplectic")
+                        ),
+                        cell(
+                            p,
+                            Prop::Symmetric,
+                            row.reversible,
+                            &is_are(row.reversible_measured, "symmetric")
+                        ),
                         cell(p, Prop::Energy, row.energy, energy),
                         row.per_step,
                         cell(p, Prop::Evaluations, row.evaluations, &evaluations),
@@ -381,7 +398,10 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
     for line in NOT_VISIBLE {
         let _ = writeln!(s, "- {line}");
     }
-    let _ = writeln!(s, "\n## Where the harness and the independent checks differ\n");
+    let _ = writeln!(
+        s,
+        "\n## Where the harness and the independent checks differ\n"
+    );
     for line in HARNESS_VS_INDEPENDENT {
         let _ = writeln!(s, "- {line}");
     }
@@ -406,7 +426,10 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
         let p = a.provenance();
         for property in p.properties {
             let (words, at) = match &property.claim {
-                Some(c) => (format!("\"{}\"", c.quote.replace('|', "\\|")), format!("`{}`", c.at)),
+                Some(c) => (
+                    format!("\"{}\"", c.quote.replace('|', "\\|")),
+                    format!("`{}`", c.at),
+                ),
                 None => ("not claimed".to_string(), "-".to_string()),
             };
             let _ = writeln!(

@@ -21,7 +21,10 @@ fn published(krate_version: &str) -> std::path::PathBuf {
             return dir;
         }
     }
-    panic!("{krate_version} is not in {}: run `cargo fetch`", src.display())
+    panic!(
+        "{krate_version} is not in {}: run `cargo fetch`",
+        src.display()
+    )
 }
 
 /// The string literals of a Rust source, unescaped, in order.
@@ -44,12 +47,10 @@ fn literals(source: &str) -> Vec<String> {
                     if b == '\'' && a != '\\' {
                         chars.next();
                         chars.next();
-                    } else if a == '\\' {
-                        if let Some('\'') = look.next() {
-                            chars.next();
-                            chars.next();
-                            chars.next();
-                        }
+                    } else if a == '\\' && look.next() == Some('\'') {
+                        chars.next();
+                        chars.next();
+                        chars.next();
                     }
                 }
             }
@@ -123,8 +124,8 @@ fn citations() {
             continue;
         };
         let path = published(krate).join(file);
-        let text = std::fs::read_to_string(&path)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let text =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let lines = cited_text(&text, first, last);
         assert!(
             lines.contains(quote.as_str()),
@@ -133,7 +134,10 @@ fn citations() {
         checked += 1;
     }
     println!("{checked} quotes found on the lines they cite");
-    assert!(checked >= 40, "only {checked} citations parsed from src/methods.rs");
+    assert!(
+        checked >= 40,
+        "only {checked} citations parsed from src/methods.rs"
+    );
 }
 
 // ---------------------------------------------------------------- peroxide
@@ -187,11 +191,23 @@ fn peroxide_rals4() {
     let with_rows: f64 = b.iter().zip(&c).map(|(b, c)| b * c).sum::<f64>() - 0.5;
     let with_published: f64 = b.iter().zip(published_c).map(|(b, c)| b * c).sum::<f64>() - 0.5;
     println!("RALS4: sum b = {:.3e} - 1", b.iter().sum::<f64>() - 1.0);
-    println!("RALS4: c - row sums of A = {:?}", published_c.iter().zip(&c).map(|(p, r)| p - r).collect::<Vec<_>>());
-    println!("RALS4: order-2 residual sum b c - 1/2 = {with_rows:.3e} (c = row sums), {with_published:.3e} (published C)");
+    println!(
+        "RALS4: c - row sums of A = {:?}",
+        published_c
+            .iter()
+            .zip(&c)
+            .map(|(p, r)| p - r)
+            .collect::<Vec<_>>()
+    );
+    println!(
+        "RALS4: order-2 residual sum b c - 1/2 = {with_rows:.3e} (c = row sums), {with_published:.3e} (published C)"
+    );
     // order 2 needs the residual at round-off; a defect far above it leaves
     // an h^2 local error term, hence order 1
-    assert!(with_rows.abs() > 1e-6, "RALS4's order-2 condition now holds: {with_rows:e}");
+    assert!(
+        with_rows.abs() > 1e-6,
+        "RALS4's order-2 condition now holds: {with_rows:e}"
+    );
     println!("RALS4 on q'' = -q to T = 1:");
     let mut last = None;
     let mut ratio = 0.0;
@@ -200,14 +216,20 @@ fn peroxide_rals4() {
         let (e, _) = oscillator_error(&RALS4, 1.0, n);
         if let Some(prev) = last {
             ratio = prev / e;
-            println!("  h = 1/{n}: error {e:.3e}, ratio to h = 1/{}: {ratio:.3}", n / 2);
+            println!(
+                "  h = 1/{n}: error {e:.3e}, ratio to h = 1/{}: {ratio:.3}",
+                n / 2
+            );
         } else {
             println!("  h = 1/{n}: error {e:.3e}");
         }
         last = Some(e);
     }
     // first order: halving h halves the error
-    assert!((1.8..2.2).contains(&ratio), "RALS4's error ratio at h = 1/1024 is {ratio}, not ~2");
+    assert!(
+        (1.8..2.2).contains(&ratio),
+        "RALS4's error ratio at h = 1/1024 is {ratio}, not ~2"
+    );
 }
 
 /// RK5: the bushy-tree conditions sum b c^(k-1) = 1/k, k = 1..5.
@@ -217,12 +239,20 @@ fn peroxide_rk5() {
     let b = RK5::BU;
     let mut residuals = Vec::new();
     for k in 1..=5 {
-        let r: f64 = b.iter().zip(&c).map(|(b, c)| b * c.powi(k - 1)).sum::<f64>() - 1.0 / k as f64;
+        let r: f64 = b
+            .iter()
+            .zip(&c)
+            .map(|(b, c)| b * c.powi(k - 1))
+            .sum::<f64>()
+            - 1.0 / k as f64;
         println!("RK5: sum b c^{} - 1/{k} = {r:.3e}", k - 1);
         residuals.push(r);
     }
     assert!(residuals[..4].iter().all(|r| r.abs() < 1e-14));
-    assert!(residuals[4].abs() > 1e-6, "RK5's order-5 bushy condition now holds");
+    assert!(
+        residuals[4].abs() > 1e-6,
+        "RK5's order-5 bushy condition now holds"
+    );
 }
 
 /// TSIT45: an error estimate of any order needs weights BU - BE summing to 0.
@@ -230,9 +260,16 @@ fn peroxide_rk5() {
 fn peroxide_tsit45() {
     let bu: f64 = TSIT45::BU.iter().sum();
     let be: f64 = TSIT45::BE.iter().sum();
-    println!("TSIT45: sum BU = {bu:.4}, sum BE = {be:.4}, sum (BU - BE) = {:.4}", bu - be);
+    println!(
+        "TSIT45: sum BU = {bu:.4}, sum BE = {be:.4}, sum (BU - BE) = {:.4}",
+        bu - be
+    );
     assert!((bu - 1.0).abs() < 1e-12);
-    assert!((bu - be).abs() > 0.1, "TSIT45's error weights now sum to {}", bu - be);
+    assert!(
+        (bu - be).abs() > 0.1,
+        "TSIT45's error weights now sum to {}",
+        bu - be
+    );
 }
 
 /// The exact GL4 map on q'' = -q, one step of h: the (2,2) Padé
@@ -279,7 +316,10 @@ fn peroxide_gl4_fixed_point() {
         }
         last = Some(e);
     }
-    assert!((1.8..2.2).contains(&ratio), "error ratio {ratio}: no longer first order");
+    assert!(
+        (1.8..2.2).contains(&ratio),
+        "error ratio {ratio}: no longer first order"
+    );
     // the one-step map on the oscillator, column by column (it is linear)
     let h = 0.1;
     let problem = Oscillator::default();
@@ -292,8 +332,13 @@ fn peroxide_gl4_fixed_point() {
     let det = columns[0][0] * columns[1][1] - columns[1][0] * columns[0][1];
     let theta = 0.5 - 3f64.sqrt() / 6.0;
     let theory = (1.0 + (1.0 - theta).powi(2) * h * h) / (1.0 + theta * theta * h * h);
-    println!("GL4 (FixedPoint) map at h = 0.1: det = {det:.6}; theta-method, theta = {theta:.4}: {theory:.6}");
-    assert!((det - theory).abs() < 1e-9, "det {det} is not the theta-method's {theory}");
+    println!(
+        "GL4 (FixedPoint) map at h = 0.1: det = {det:.6}; theta-method, theta = {theta:.4}: {theory:.6}"
+    );
+    assert!(
+        (det - theory).abs() < 1e-9,
+        "det {det} is not the theta-method's {theory}"
+    );
 }
 
 /// GL4 with the Broyden solve against the exact GL4 map on q'' = -q:
@@ -304,7 +349,9 @@ fn peroxide_gl4_fixed_point() {
 fn peroxide_gl4_broyden() {
     let gl4 = GL4::new(ImplicitSolver::Broyden, GL4_TOLERANCE, GL4_SWEEPS);
     println!("GL4 (Broyden, tol 1e-14, 200 sweeps) on q'' = -q from (1, 0) to T = 1:");
-    println!("  h | largest one-step departure from the GL4 map | calls a step | error at T = 1 | ratio to the error at 2h | GL4 truncation error | ratio | GL4 map iterated in doubles | ratio");
+    println!(
+        "  h | largest one-step departure from the GL4 map | calls a step | error at T = 1 | ratio to the error at 2h | GL4 truncation error | ratio | GL4 map iterated in doubles | ratio"
+    );
     let mut worst_large_h = 0.0f64;
     let mut previous = f64::NAN;
     for k in 4..=10 {
@@ -337,7 +384,10 @@ fn peroxide_gl4_broyden() {
     }
     // a solve converged to 1e-14 would leave each step within ~1e-14 of the
     // map; 1000 times that cannot be round-off on states of size one
-    assert!(worst_large_h > 1e-11, "the Broyden solve now reaches the GL4 map");
+    assert!(
+        worst_large_h > 1e-11,
+        "the Broyden solve now reaches the GL4 map"
+    );
 }
 
 // ------------------------------------------------------------- russell_ode
@@ -375,7 +425,10 @@ fn russell_equal_steps() {
         "replay, spans 1..=28, N = 1..=1000, h_equal = span / N: {other} of {pairs} pairs take other than N steps, {overshoot} end a whole step past x1 (first with span 1: N = {first:?})"
     );
     let (steps, n, h) = replay(1.0, 1.0 / 196.0);
-    println!("replay, span 1, h_equal = 1/196: n = {n}, h = 1/{:.0}, {steps} steps", 1.0 / h);
+    println!(
+        "replay, span 1, h_equal = 1/196: n = {n}, h = 1/{:.0}, {steps} steps",
+        1.0 / h
+    );
 
     // the crate itself: y' = 1 on [0, 1] with h_equal = 1/196, Rk4
     struct Calls(usize);

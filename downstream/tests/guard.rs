@@ -4,7 +4,9 @@
 //! boxes, each claim a separate test named after it:
 //!
 //! - `ode_solvers` 0.6.2: the fixed-step RK4 (f64 and f32) and the DOPRI5
-//!   and DOP853 pairs taken one step at a time, as first-order systems;
+//!   and DOP853 pairs taken one step at a time, as first-order systems on
+//!   slices (its nalgebra is not stepladder's: its vectors lend slices, and
+//!   no force call copies);
 //! - `utsuroi` 0.2.0: Störmer-Verlet and the fourth-order Yoshida
 //!   composition, on its own state type;
 //! - `differential-equations` 0.7.0: velocity Verlet on canonical `(q, p)`,
@@ -23,8 +25,9 @@ use ode_solvers::{Dop853, Dopri5, OutputType, Rk4, System};
 use stepladder::nalgebra::{SVector, Vector1};
 use stepladder::prelude::*;
 use stepladder::scene::SceneMeta;
-use stepladder::scheme::{AnyBlackBox, BlackBoxStep, Float, Hamiltonian, Rhs, VectorForce};
-use stepladder::study::{Advance, AdvanceFn, OrderSpec, RunEnd, global_order};
+use stepladder::scheme::{Advance, AdvanceFn, RunEnd};
+use stepladder::scheme::{AnyBlackBox, BlackBoxStep, Float, Hamiltonian, Shape, VectorForce};
+use stepladder::study::{OrderSpec, global_order};
 use utsuroi::{DynamicalSystem, StormerVerlet, Yoshida4};
 
 /// Claims shared by the tables below: explicit methods whose symplectic
@@ -125,29 +128,38 @@ fn ours<T: Float, const N: usize>(x: OdeVector<T, N>) -> SVector<T, N> {
 /// `State` is made of it).
 type OdeVector<T, const M: usize> = ode_solvers::SVector<T, M>;
 
-// ode_solvers: first-order systems through `BlackBox::first_order`.
+// ode_solvers: first-order systems on nalgebra 0.34's vectors, which lend
+// their elements as slices: through `Shape::first_order_on_slices`, with
+// nothing copied per force call.
 
-/// The adapter's right-hand side as `ode_solvers`' `System` on
-/// `y = [q, v]` of length `M`.
-struct FirstOrder<'f, T, const M: usize>(&'f Rhs<'f, SVector<T, M>>);
+/// The adapter's right-hand side on slices, `y = [q, v]`, as
+/// `ode_solvers`' `System` on its vectors of any length (and as
+/// differential-equations' `ODE` on `Vec<f64>`, below).
+struct FirstOrder<'f, T>(&'f Force<'f, T>);
 
-impl<T: FloatNumber + Float, const M: usize> System<T, OdeVector<T, M>> for FirstOrder<'_, T, M> {
+impl<T: FloatNumber + Float, const M: usize> System<T, OdeVector<T, M>> for FirstOrder<'_, T> {
     fn system(&self, _: T, y: &OdeVector<T, M>, dy: &mut OdeVector<T, M>) {
-        let mut rate = SVector::from_element(T::default());
-        (self.0)(&ours(*y), &mut rate);
-        *dy = theirs(rate);
+        (self.0)(y.as_slice(), dy.as_mut_slice());
     }
 }
 
-/// One step of `ode_solvers::Rk4` of size `h`: a solver from 0 to `h`.
-fn ode_solvers_rk4<T: FloatNumber + Float, const M: usize>(
-    y: &mut SVector<T, M>,
-    h: T,
-    rhs: &Rhs<SVector<T, M>>,
-) {
-    let mut solver = Rk4::new(FirstOrder(rhs), T::zero(), theirs(*y), h, h);
+/// A first-order step on slices, `step(y, h, f)`, as a black box keeping
+/// nothing between steps.
+fn on_slices<T: Float>(
+    meta: SchemeMeta,
+    step: fn(&mut [T], T, &Force<T>),
+) -> BlackBox<T, impl BlackBoxStep<T, Kept = ()>> {
+    let step = move |_: &mut (), y: &mut [T], h: T, f: &Force<T>| step(y, h, f);
+    BlackBox::stateful(meta, || (), Shape::first_order_on_slices(step))
+}
+
+/// One step of `ode_solvers::Rk4` of size `h` on `y` of length `M`: a
+/// solver from 0 to `h`.
+fn ode_solvers_rk4<T: FloatNumber + Float, const M: usize>(y: &mut [T], h: T, rhs: &Force<T>) {
+    let start = OdeVector::<T, M>::from_column_slice(y);
+    let mut solver = Rk4::new(FirstOrder(rhs), T::zero(), start, h, h);
     solver.integrate().expect("one fixed step");
-    *y = ours(*solver.y_out().last().expect("the step's output"));
+    y.copy_from_slice(solver.y_out().last().expect("the step's output").as_slice());
 }
 
 /// One step of an `ode_solvers` embedded pair (`Dop853`, `Dopri5`) of size
@@ -157,17 +169,18 @@ fn ode_solvers_rk4<T: FloatNumber + Float, const M: usize>(
 /// `h`, and the ladder would measure its step control instead.)
 macro_rules! ode_solvers_pair {
     ($name:ident, $pair:ident) => {
-        fn $name<const M: usize>(y: &mut SVector<f64, M>, h: f64, rhs: &Rhs<SVector<f64, M>>) {
+        fn $name<const M: usize>(y: &mut [f64], h: f64, rhs: &Force<f64>) {
             let loose = 1e30;
+            let start = OdeVector::<f64, M>::from_column_slice(y);
             #[rustfmt::skip]
             let mut solver = $pair::from_param(
-                FirstOrder(rhs), 0.0, h, h, theirs(*y), // f, x, x_end, dx, y
+                FirstOrder(rhs), 0.0, h, h, start, // f, x, x_end, dx, y
                 loose, loose, 0.9, 0.0, 0.333, 6.0, // rtol, atol, safety, beta, fac_min, fac_max
                 h, h, 10, 1000, OutputType::Sparse, // h_max, h, n_max, n_stiff, output
             );
             let stats = solver.integrate().expect("one step");
             assert_eq!(stats.accepted_steps, 1, "{stats:?}");
-            *y = ours(*solver.y_out().last().expect("the step's output"));
+            y.copy_from_slice(solver.y_out().last().expect("the step's output").as_slice());
         }
     };
 }
@@ -278,37 +291,34 @@ fn velocity_verlet(q: &mut Vec<f64>, p: &mut Vec<f64>, h: f64, ham: &Hamiltonian
 const VELOCITY_VERLET_CLAIMS: SchemeMeta =
     claims("differential-equations-velocity-verlet", 2, true, 3);
 
-/// `y' = (v, a(q))` on `y = [q, v]` as differential-equations' `ODE`.
-struct Newton<'f>(&'f Force<'f, f64>);
-
-impl ODE<f64, Vec<f64>> for Newton<'_> {
+impl ODE<f64, Vec<f64>> for FirstOrder<'_, f64> {
     fn diff(&self, _: f64, y: &Vec<f64>, dy: &mut Vec<f64>) {
-        let ((q, v), (dq, a)) = (y.split_at(y.len() / 2), dy.split_at_mut(y.len() / 2));
-        dq.copy_from_slice(v);
-        (self.0)(q, a);
+        (self.0)(y, dy);
     }
 }
 
-/// A differential-equations solver object kept from step to step (with its
-/// last derivative): made by `method(h)` and initialised on the first step
-/// of a run, and again should it be handed a state other than its own (which
-/// the evaluation count would show as one more call a step).
+/// A differential-equations solver object on first-order systems, kept
+/// from step to step (with its last derivative): made by `method(h)` and
+/// initialised on the first step of a run, and again should it be handed a
+/// state other than its own (which the evaluation count would show as one
+/// more call a step). The shape (`y = [q, v]` on slices) and the kept
+/// object combine: `Shape::first_order_on_slices` inside
+/// `BlackBox::stateful`.
 fn kept<M>(meta: SchemeMeta, method: fn(f64) -> M) -> BlackBox<f64, impl BlackBoxStep<f64>>
 where
     M: OrdinaryNumericalMethod<f64, Vec<f64>> + Clone + Send + Sync,
 {
-    let step = move |kept: &mut Option<M>, q: &mut [f64], v: &mut [f64], h, f: &Force<f64>| {
-        let (ode, y) = (Newton(f), [&q[..], &v[..]].concat());
+    let step = move |kept: &mut Option<M>, y: &mut [f64], h: f64, f: &Force<f64>| {
+        let ode = FirstOrder(f);
         let solver = kept.get_or_insert_with(|| method(h));
-        if *solver.status() == Status::Uninitialized || solver.y() != &y {
-            solver.init(&ode, 0.0, h, &y).expect("a step of h");
+        if *solver.status() == Status::Uninitialized || solver.y().as_slice() != y {
+            solver.init(&ode, 0.0, h, &y.to_vec()).expect("a step of h");
         }
         solver.set_h(h);
         solver.step(&ode).expect("one step");
-        q.copy_from_slice(&solver.y()[..q.len()]);
-        v.copy_from_slice(&solver.y()[q.len()..]);
+        y.copy_from_slice(solver.y());
     };
-    BlackBox::stateful(meta, || None, step)
+    BlackBox::stateful(meta, || None, Shape::first_order_on_slices(step))
 }
 
 type Rk4Object = ExplicitRungeKutta<Ordinary, Fixed, f64, Vec<f64>, 4, 4, 4>;
@@ -375,21 +385,21 @@ stepladder::guard_claims! {
     engine_leapfrog_f32: BlackBox::new(claims("engine-leapfrog-f32", 2, true, 2), engine_adapter) => {
         kepler_circular: KeplerCircular,
     }
-    ode_solvers_rk4: BlackBox::first_order(RK4_CLAIMS, ode_solvers_rk4::<f64, 4>) => {
+    ode_solvers_rk4: on_slices(RK4_CLAIMS, ode_solvers_rk4::<f64, 4>) => {
         kepler_circular: KeplerCircular,
         kepler_eccentric: KeplerEccentric::new(0.6).unwrap(),
     }
-    ode_solvers_rk4_oscillator: BlackBox::first_order(RK4_CLAIMS, ode_solvers_rk4::<f64, 2>) => {
+    ode_solvers_rk4_oscillator: on_slices(RK4_CLAIMS, ode_solvers_rk4::<f64, 2>) => {
         harmonic: Harmonic::default(),
         pendulum: FromPotential(Pendulum),
     }
-    ode_solvers_dop853: BlackBox::first_order(DOP853_CLAIMS, ode_solvers_dop853::<4>) => {
+    ode_solvers_dop853: on_slices(DOP853_CLAIMS, ode_solvers_dop853::<4>) => {
         kepler_circular: KeplerCircular,
     }
-    ode_solvers_dop853_oscillator: BlackBox::first_order(DOP853_CLAIMS, ode_solvers_dop853::<2>) => {
+    ode_solvers_dop853_oscillator: on_slices(DOP853_CLAIMS, ode_solvers_dop853::<2>) => {
         harmonic: Harmonic::default(),
     }
-    ode_solvers_dopri5: BlackBox::first_order(DOPRI5_CLAIMS, ode_solvers_dopri5::<4>) => {
+    ode_solvers_dopri5: on_slices(DOPRI5_CLAIMS, ode_solvers_dopri5::<4>) => {
         kepler_circular: KeplerCircular,
     }
     utsuroi_stormer_verlet: utsuroi_stormer_verlet::<2>() => {
@@ -429,7 +439,7 @@ stepladder::guard_claims! {
 #[test]
 fn integrators_of_three_crates_in_one_list_are_guarded_in_one_loop() {
     let all: Vec<AnyBlackBox> = vec![
-        BlackBox::first_order(RK4_CLAIMS, ode_solvers_rk4::<f64, 4>).boxed(),
+        on_slices(RK4_CLAIMS, ode_solvers_rk4::<f64, 4>).boxed(),
         utsuroi_stormer_verlet::<2>().boxed(),
         utsuroi_yoshida4::<2>().boxed(),
         BlackBox::canonical(VELOCITY_VERLET_CLAIMS, &[], velocity_verlet).boxed(),
@@ -457,7 +467,7 @@ mod caught {
     #[test]
     #[should_panic(expected = "not symplectic, though claimed")]
     fn rk4_claimed_symplectic() {
-        let liar = BlackBox::first_order(claims("rk4-liar", 4, true, 4), ode_solvers_rk4::<f64, 4>);
+        let liar = on_slices(claims("rk4-liar", 4, true, 4), ode_solvers_rk4::<f64, 4>);
         assert_symplectic(&liar, &KeplerCircular);
     }
 
@@ -466,7 +476,7 @@ mod caught {
     #[test]
     #[should_panic(expected = "not symplectic, though claimed")]
     fn rk4_f32_claimed_symplectic() {
-        let liar = BlackBox::first_order(
+        let liar = on_slices(
             claims("rk4-f32-liar", 4, true, 4),
             ode_solvers_rk4::<f32, 4>,
         );
@@ -558,7 +568,7 @@ mod caught {
 /// study cannot decide; it must say so, never refute the claim.
 #[test]
 fn ode_solvers_dop853_on_the_eccentric_orbit_is_never_refuted() {
-    let dop853 = BlackBox::first_order(DOP853_CLAIMS, ode_solvers_dop853::<4>);
+    let dop853 = on_slices(DOP853_CLAIMS, ode_solvers_dop853::<4>);
     let orbit = KeplerEccentric::new(0.6).unwrap();
     let record = global_order(&dop853, &orbit, &OrderSpec::default()).unwrap();
     assert_ne!(record.verdict, Verdict::Fail, "{}", record.reason);
@@ -572,7 +582,7 @@ fn ode_solvers_dop853_on_the_eccentric_orbit_is_never_refuted() {
 /// "inconclusive", never refute the claim.
 #[test]
 fn ode_solvers_rk4_in_f32_is_never_refuted() {
-    let rk4_f32 = BlackBox::first_order(
+    let rk4_f32 = on_slices(
         claims("ode-solvers-rk4-f32", 4, false, 4),
         ode_solvers_rk4::<f32, 4>,
     );
@@ -584,7 +594,9 @@ fn ode_solvers_rk4_in_f32_is_never_refuted() {
 
 // ode_solvers' DOPRI5 as users run it: adaptive, from t0 to t1 at a
 // tolerance, through `AdaptiveBlackBox`. The same first-order system as
-// above, on ode_solvers' vectors.
+// above, on ode_solvers' vectors, from the force alone.
+struct Newton<'f>(&'f Force<'f, f64>);
+
 impl System<f64, OdeVector<f64, 4>> for Newton<'_> {
     fn system(&self, _: f64, y: &OdeVector<f64, 4>, dy: &mut OdeVector<f64, 4>) {
         let mut a = [0.0; 2];

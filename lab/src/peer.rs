@@ -33,13 +33,11 @@ use serde::Serialize;
 use std::cell::Cell;
 use std::time::{Duration, Instant};
 use stepladder::error::Error;
+use stepladder::internals::cost::work_points::{TargetCost, WorkPoint, targets_of};
+use stepladder::internals::geometry::energy::energy_norm;
 use stepladder::scene::Scene;
+use stepladder::scheme::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request};
 use stepladder::state::State;
-use stepladder::study::adaptive::integrator::{
-    AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request,
-};
-use stepladder::study::cost::work_points::{TargetCost, WorkPoint, targets_of};
-use stepladder::study::geometry::energy::energy_norm;
 
 /// Most steps a peer may take in one run (raised from the crates' defaults
 /// of 10^5 so that tight tolerances on long runs are not cut short).
@@ -609,7 +607,7 @@ pub fn peer_work<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
 }
 
 /// The evaluations to reach each of
-/// [`stepladder::study::cost::work_points::TARGETS`] from a peer's points,
+/// [`stepladder::internals::cost::work_points::TARGETS`] from a peer's points,
 /// loosest tolerance first.
 pub fn peer_targets(points: &[PeerPoint]) -> Vec<TargetCost> {
     let data: Vec<(f64, Option<f64>)> = points

@@ -8,10 +8,16 @@
 //! `Vec<T>`, nalgebra's `SVector` and `DVector` (of the nalgebra this crate
 //! re-exports), and ndarray's `Array1` with the `ndarray` feature. A heap
 //! vector is allocated afresh each step, as the integrator itself would;
-//! `SVector` allocates nothing.
+//! `SVector` allocates nothing. A vector type this crate cannot implement
+//! [`Vector`] for (another nalgebra version's) goes through
+//! [`Shape::first_order_on_slices`], lending its elements as slices: no
+//! copy per force call. A fixed-size type of another length than the
+//! scene's state fails the first step with [`StepFailure::Unfit`], naming
+//! the type and the length.
 
 use super::SchemeMeta;
-use super::black_box::{BlackBox, BlackBoxStep, Float, Force};
+use super::StepFailure;
+use super::black_box::{BlackBox, BlackBoxStep, Float, Force, StepReturn};
 use nalgebra::{DVector, SVector};
 
 /// A vector type an integrator works on: contiguous storage of `Scalar`s
@@ -123,16 +129,212 @@ fn mass(masses: &[f64], i: usize) -> f64 {
     masses.get(i).copied().unwrap_or(1.0)
 }
 
-/// A fresh `V` of `len` elements, or a panic naming the mismatch (the step's
-/// vector type cannot hold the scene's state: a fixed-size type of the
-/// wrong length).
-fn fresh<V: Vector>(len: usize, what: &str) -> V {
-    V::zeros(len).unwrap_or_else(|| {
-        panic!(
-            "stepladder: the {what} vector type `{}` cannot hold the {len} numbers the scene needs",
+/// A fresh `V` of `len` elements, or the failure naming the mismatch (the
+/// step's vector type cannot hold the scene's state: a fixed-size type of
+/// the wrong length).
+fn fresh<V: Vector>(len: usize, what: &str) -> Result<V, StepFailure> {
+    V::zeros(len).ok_or_else(|| StepFailure::Unfit {
+        message: format!(
+            "the {what} vector type `{}` cannot hold the {len} numbers the scene needs",
             std::any::type_name::<V>()
-        )
+        ),
     })
+}
+
+/// A scratch slice of `len` elements for the call `f`: on the stack up to
+/// [`STACK_LEN`], on the heap (once per step) beyond.
+fn with_scratch<T: Float, R>(len: usize, f: impl FnOnce(&mut [T]) -> R) -> R {
+    if len <= STACK_LEN {
+        f(&mut [T::default(); STACK_LEN][..len])
+    } else {
+        f(&mut vec![T::default(); len])
+    }
+}
+
+/// Up to 32 bodies in three dimensions, `[q, v]` on the stack.
+const STACK_LEN: usize = 192;
+
+/// The shapes an integrator's step comes in, each turned into a step on the
+/// scene's position and velocity slices that keeps `K` between steps: the
+/// pieces that [`BlackBox::stateful`] and [`BlackBox::implicit`] take, so
+/// that shape, kept state and solve reporting combine freely. A shape's
+/// step returns what the wrapped step returns (nothing, a [`super::Solve`],
+/// or a `Result`), and fails with [`StepFailure::Unfit`] where its vector
+/// type cannot hold the scene's state. [`BlackBox::first_order`],
+/// [`BlackBox::canonical`] and [`BlackBox::on_vectors`] are the shapes with
+/// nothing kept.
+///
+/// ```
+/// use stepladder::guard;
+/// use stepladder::scene::KeplerCircular;
+/// use stepladder::scheme::{BlackBox, Force, Rk4, Scheme, Shape};
+///
+/// /// An integrator object on first-order systems over slices, with a
+/// /// cache it keeps between steps (here: the step count).
+/// #[derive(Clone, Default)]
+/// struct TheirRk4 { steps: u64 }
+/// impl TheirRk4 {
+///     fn step(&mut self, y: &mut [f64], h: f64, f: &dyn Fn(&[f64], &mut [f64])) {
+///         let n = y.len();
+///         let mut k = vec![vec![0.0; n]; 4];
+///         let mut stage = y.to_vec();
+///         for s in 0..4 {
+///             if s > 0 {
+///                 let c = if s == 3 { 1.0 } else { 0.5 };
+///                 stage = (0..n).map(|i| y[i] + c * h * k[s - 1][i]).collect();
+///             }
+///             f(&stage, &mut k[s]);
+///         }
+///         for i in 0..n {
+///             y[i] += h / 6.0 * (k[0][i] + 2.0 * k[1][i] + 2.0 * k[2][i] + k[3][i]);
+///         }
+///         self.steps += 1;
+///     }
+/// }
+/// let theirs = BlackBox::stateful(
+///     *Rk4.meta(),
+///     TheirRk4::default,
+///     Shape::first_order_on_slices(|rk: &mut TheirRk4, y: &mut [f64], h: f64, f: &Force<f64>| {
+///         rk.step(y, h, f)
+///     }),
+/// );
+/// guard::assert_order(&theirs, &KeplerCircular);
+/// guard::assert_evaluations(&theirs, &KeplerCircular);
+/// ```
+pub struct Shape;
+
+// The returned step's type is spelled out in full: it is what
+// `BlackBox::stateful` and `BlackBox::implicit` take, and a user reads it.
+#[allow(clippy::type_complexity)]
+impl Shape {
+    /// A step of a first-order system `y' = f(y)` on `y = [q, v]` of the
+    /// integrator's vector type `V`: `step(kept, y, h, f)`, with
+    /// `f(y) = [v, a(q)]` (one force evaluation per call).
+    pub fn first_order<T, K, V, S, O, R>(
+        step: S,
+    ) -> impl Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> Result<R, StepFailure>
+    where
+        T: Float,
+        V: Vector<Scalar = T>,
+        S: Fn(&mut K, &mut V, T, &Rhs<'_, V>) -> O,
+        O: StepReturn<R>,
+    {
+        move |kept: &mut K, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>| {
+            let d = q.len();
+            let mut y: V = fresh(2 * d, "first-order")?;
+            y.as_mut_slice()[..d].copy_from_slice(q);
+            y.as_mut_slice()[d..].copy_from_slice(v);
+            let f = |y: &V, dy: &mut V| first_order_rhs(force, y.as_slice(), dy.as_mut_slice());
+            let out = step(kept, &mut y, h, &f).into_step()?;
+            q.copy_from_slice(&y.as_slice()[..d]);
+            v.copy_from_slice(&y.as_slice()[d..]);
+            Ok(out)
+        }
+    }
+
+    /// A step of a first-order system on slices, for an integrator whose
+    /// right-hand side takes `&[T]` (or any vector type that lends its
+    /// elements as a slice, such as another nalgebra version's): `step(kept,
+    /// y, h, f)` with `f(y, dy)` on slices of `y`'s length. Nothing is
+    /// copied per force call, and nothing allocated per step up to 96
+    /// coordinates.
+    pub fn first_order_on_slices<T, K, S, O, R>(
+        step: S,
+    ) -> impl Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> Result<R, StepFailure>
+    where
+        T: Float,
+        S: Fn(&mut K, &mut [T], T, &Force<'_, T>) -> O,
+        O: StepReturn<R>,
+    {
+        move |kept: &mut K, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>| {
+            let d = q.len();
+            with_scratch(2 * d, |y: &mut [T]| {
+                y[..d].copy_from_slice(q);
+                y[d..].copy_from_slice(v);
+                let f = |y: &[T], dy: &mut [T]| first_order_rhs(force, y, dy);
+                let out = step(kept, y, h, &f).into_step()?;
+                q.copy_from_slice(&y[..d]);
+                v.copy_from_slice(&y[d..]);
+                Ok(out)
+            })
+        }
+    }
+
+    /// A step on canonical coordinates `(q, p)` with a diagonal mass
+    /// matrix: `masses` per coordinate (empty for unit masses), `p = M v`.
+    /// `step(kept, q, p, h, hamiltonian)` advances by one step, calling
+    /// [`Hamiltonian::dq_dt`] and [`Hamiltonian::dp_dt`] (one force
+    /// evaluation) for Hamilton's equations. A `masses` whose length is not
+    /// the scene's dimension fails the step with [`StepFailure::Unfit`].
+    pub fn canonical<T, K, V, S, O, R>(
+        masses: &[f64],
+        step: S,
+    ) -> impl Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> Result<R, StepFailure>
+    where
+        T: Float,
+        V: Vector<Scalar = T>,
+        S: Fn(&mut K, &mut V, &mut V, T, &Hamiltonian<'_, V>) -> O,
+        O: StepReturn<R>,
+    {
+        let masses = masses.to_vec();
+        move |kept: &mut K, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>| {
+            let masses = masses.as_slice();
+            let d = q.len();
+            if !(masses.is_empty() || masses.len() == d) {
+                return Err(StepFailure::Unfit {
+                    message: format!(
+                        "{} masses given for a scene of dimension {d} (one per coordinate, \
+                         or none for unit masses)",
+                        masses.len()
+                    ),
+                });
+            }
+            let (mut qv, mut p): (V, V) = (fresh(d, "position")?, fresh(d, "momentum")?);
+            qv.as_mut_slice().copy_from_slice(q);
+            for (i, (p, &v)) in p.as_mut_slice().iter_mut().zip(v.iter()).enumerate() {
+                *p = T::from_f64(mass(masses, i) * v.to_f64());
+            }
+            let hamiltonian = Hamiltonian { masses, force };
+            let out = step(kept, &mut qv, &mut p, h, &hamiltonian).into_step()?;
+            q.copy_from_slice(qv.as_slice());
+            for (i, (v, &p)) in v.iter_mut().zip(p.as_slice()).enumerate() {
+                *v = T::from_f64(p.to_f64() / mass(masses, i));
+            }
+            Ok(out)
+        }
+    }
+
+    /// A step on the integrator's own vector type: `step(kept, q, v, h,
+    /// force)` as for [`BlackBox::new`], with `q`, `v` and the force's
+    /// arguments of type `V`.
+    pub fn on_vectors<T, K, V, S, O, R>(
+        step: S,
+    ) -> impl Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> Result<R, StepFailure>
+    where
+        T: Float,
+        V: Vector<Scalar = T>,
+        S: Fn(&mut K, &mut V, &mut V, T, &VectorForce<'_, V>) -> O,
+        O: StepReturn<R>,
+    {
+        move |kept: &mut K, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>| {
+            let d = q.len();
+            let (mut qv, mut vv): (V, V) = (fresh(d, "position")?, fresh(d, "velocity")?);
+            qv.as_mut_slice().copy_from_slice(q);
+            vv.as_mut_slice().copy_from_slice(v);
+            let f = |q: &V, a: &mut V| force(q.as_slice(), a.as_mut_slice());
+            let out = step(kept, &mut qv, &mut vv, h, &f).into_step()?;
+            q.copy_from_slice(qv.as_slice());
+            v.copy_from_slice(vv.as_slice());
+            Ok(out)
+        }
+    }
+}
+
+/// `dy = [v, a(q)]` at `y = [q, v]`: one force evaluation.
+fn first_order_rhs<T: Float>(force: &Force<'_, T>, y: &[T], dy: &mut [T]) {
+    let d = y.len() / 2;
+    dy[..d].copy_from_slice(&y[d..]);
+    force(&y[..d], &mut dy[d..]);
 }
 
 impl<T: Float> BlackBox<T, ()> {
@@ -173,23 +375,9 @@ impl<T: Float> BlackBox<T, ()> {
         V: Vector<Scalar = T>,
         S: Fn(&mut V, T, &Rhs<'_, V>),
     {
-        BlackBox::new(
-            meta,
-            move |q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>| {
-                let d = q.len();
-                let mut y: V = fresh(2 * d, "first-order");
-                y.as_mut_slice()[..d].copy_from_slice(q);
-                y.as_mut_slice()[d..].copy_from_slice(v);
-                let f = |y: &V, dy: &mut V| {
-                    let (y, dy) = (y.as_slice(), dy.as_mut_slice());
-                    dy[..d].copy_from_slice(&y[d..]);
-                    force(&y[..d], &mut dy[d..]);
-                };
-                step(&mut y, h, &f);
-                q.copy_from_slice(&y.as_slice()[..d]);
-                v.copy_from_slice(&y.as_slice()[d..]);
-            },
-        )
+        let step =
+            Shape::first_order(move |_: &mut (), y: &mut V, h: T, f: &Rhs<'_, V>| step(y, h, f));
+        BlackBox::stateful(meta, || (), step)
     }
 
     /// Wraps a step on canonical coordinates `(q, p)` with a diagonal mass
@@ -225,30 +413,13 @@ impl<T: Float> BlackBox<T, ()> {
         V: Vector<Scalar = T>,
         S: Fn(&mut V, &mut V, T, &Hamiltonian<'_, V>),
     {
-        let masses = masses.to_vec();
-        BlackBox::new(
-            meta,
-            move |q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>| {
-                let masses = masses.as_slice();
-                let d = q.len();
-                assert!(
-                    masses.is_empty() || masses.len() == d,
-                    "stepladder: {} masses given for a scene of dimension {d} (one per coordinate, or none for unit masses)",
-                    masses.len()
-                );
-                let (mut qv, mut p): (V, V) = (fresh(d, "position"), fresh(d, "momentum"));
-                qv.as_mut_slice().copy_from_slice(q);
-                for (i, (p, &v)) in p.as_mut_slice().iter_mut().zip(v.iter()).enumerate() {
-                    *p = T::from_f64(mass(masses, i) * v.to_f64());
-                }
-                let hamiltonian = Hamiltonian { masses, force };
-                step(&mut qv, &mut p, h, &hamiltonian);
-                q.copy_from_slice(qv.as_slice());
-                for (i, (v, &p)) in v.iter_mut().zip(p.as_slice()).enumerate() {
-                    *v = T::from_f64(p.to_f64() / mass(masses, i));
-                }
+        let step = Shape::canonical(
+            masses,
+            move |_: &mut (), q: &mut V, p: &mut V, h: T, ham: &Hamiltonian<'_, V>| {
+                step(q, p, h, ham)
             },
-        )
+        );
+        BlackBox::stateful(meta, || (), step)
     }
 
     /// Wraps a step on the integrator's own vector type:
@@ -283,19 +454,10 @@ impl<T: Float> BlackBox<T, ()> {
         V: Vector<Scalar = T>,
         S: Fn(&mut V, &mut V, T, &VectorForce<'_, V>),
     {
-        BlackBox::new(
-            meta,
-            move |q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>| {
-                let d = q.len();
-                let (mut qv, mut vv): (V, V) = (fresh(d, "position"), fresh(d, "velocity"));
-                qv.as_mut_slice().copy_from_slice(q);
-                vv.as_mut_slice().copy_from_slice(v);
-                let f = |q: &V, a: &mut V| force(q.as_slice(), a.as_mut_slice());
-                step(&mut qv, &mut vv, h, &f);
-                q.copy_from_slice(qv.as_slice());
-                v.copy_from_slice(vv.as_slice());
-            },
-        )
+        let step = Shape::on_vectors(
+            move |_: &mut (), q: &mut V, v: &mut V, h: T, f: &VectorForce<'_, V>| step(q, v, h, f),
+        );
+        BlackBox::stateful(meta, || (), step)
     }
 }
 
@@ -303,7 +465,7 @@ impl<T: Float> BlackBox<T, ()> {
 mod tests {
     use super::*;
     use crate::scene::{Harmonic, KeplerCircular, Scene};
-    use crate::scheme::{EULER_CROMER, Rk4, Scheme, VELOCITY_VERLET};
+    use crate::scheme::{EULER_CROMER, Rk4, Scheme, StepFailure, VELOCITY_VERLET};
     use crate::state::State;
     use nalgebra::Vector2;
 
@@ -431,21 +593,127 @@ mod tests {
         );
     }
 
-    #[test]
-    #[should_panic(expected = "3 masses given for a scene of dimension 2")]
-    fn the_wrong_number_of_masses_is_named() {
-        let bb = BlackBox::canonical(*EULER_CROMER.meta(), &[1.0, 2.0, 3.0], kick_drift);
-        run(&bb, &KeplerCircular, 0.01, 1);
+    /// The message of the first step's failure on `scene`.
+    fn first_failure<M: Scheme, S: Scene<D>, const D: usize>(m: &M, scene: &S) -> String {
+        let mut c = m.start(scene, &scene.initial(), 0.01);
+        match m.step(scene, &mut c, 0.01) {
+            Err(StepFailure::Unfit { message }) => message,
+            other => panic!("expected an unfit step, got {other:?}"),
+        }
     }
 
     #[test]
-    #[should_panic(expected = "cannot hold the 4 numbers the scene needs")]
-    fn a_fixed_vector_of_the_wrong_length_is_named() {
+    fn the_wrong_number_of_masses_is_an_error_naming_it() {
+        let bb = BlackBox::canonical(*EULER_CROMER.meta(), &[1.0, 2.0, 3.0], kick_drift);
+        let message = first_failure(&bb, &KeplerCircular);
+        assert!(
+            message.contains("3 masses given for a scene of dimension 2"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn a_fixed_vector_of_the_wrong_length_is_an_error_naming_it() {
+        // y = [q, v] of the orbit has 4 numbers, a Vector2 holds 2
         let bb = BlackBox::first_order(
             *Rk4.meta(),
             |_: &mut Vector2<f64>, _: f64, _: &Rhs<Vector2<f64>>| {},
         );
-        run(&bb, &KeplerCircular, 0.01, 1);
+        let message = first_failure(&bb, &KeplerCircular);
+        assert!(
+            message.contains("cannot hold the 4 numbers the scene needs"),
+            "{message}"
+        );
+        assert!(
+            message.contains("Matrix<f64"),
+            "the type is named: {message}"
+        );
+        // and on a scene it fits (the oscillator's y has 2 numbers) it runs
+        let mut c = bb.start(&Harmonic::default(), &Harmonic::default().initial(), 0.01);
+        assert_eq!(bb.step(&Harmonic::default(), &mut c, 0.01), Ok(()));
+    }
+
+    #[test]
+    fn a_guard_on_a_vector_of_the_wrong_length_fails_with_the_mismatch() {
+        let bb = BlackBox::on_vectors(
+            *VELOCITY_VERLET.meta(),
+            |_: &mut Vector2<f64>, _: &mut Vector2<f64>, _: f64, _: &VectorForce<Vector2<f64>>| {},
+        );
+        let record = crate::study::claims(&bb, &Harmonic::default()).unwrap();
+        let order = &record.verdicts[0];
+        assert!(order.verdict.fails_a_guard(), "{order:?}");
+        assert!(
+            order.message.contains("cannot hold the 1 numbers"),
+            "{}",
+            order.message
+        );
+    }
+
+    /// A first-order step kept between steps, on slices: the state it keeps
+    /// is the scene's own (each run starts fresh), and the slice
+    /// right-hand side is the adapter's `[v, a(q)]`.
+    #[test]
+    fn a_kept_first_order_step_on_slices_counts_its_own_steps_per_run() {
+        let counted = BlackBox::stateful(
+            *crate::scheme::Euler.meta(),
+            || 0u32,
+            Shape::first_order_on_slices(|n: &mut u32, y: &mut [f64], h: f64, f: &Force<f64>| {
+                let mut dy = [0.0; 2];
+                f(y, &mut dy);
+                y[0] += h * dy[0];
+                y[1] += h * dy[1];
+                *n += 1;
+                if *n > 3 {
+                    return Err(StepFailure::NotConverged {
+                        iterations: *n,
+                        residual: 0.0,
+                    });
+                }
+                Ok(())
+            }),
+        );
+        let osc = Harmonic::default();
+        let s0 = osc.initial();
+        // one step: explicit Euler on y' = [v, a(q)]
+        let s = run(&counted, &osc, 0.1, 1);
+        assert_eq!(s.q[0], s0.q[0] + 0.1 * s0.v[0]);
+        assert_eq!(s.v[0], s0.v[0] + 0.1 * osc.acceleration(&s0.q)[0]);
+        // the kept count belongs to a run: three steps pass, the fourth fails
+        let mut c = counted.start(&osc, &s0, 0.1);
+        for _ in 0..3 {
+            counted.step(&osc, &mut c, 0.1).unwrap();
+        }
+        assert!(counted.step(&osc, &mut c, 0.1).is_err());
+        let mut fresh = counted.start(&osc, &s0, 0.1);
+        assert_eq!(counted.step(&osc, &mut fresh, 0.1), Ok(()));
+    }
+
+    /// A first-order step on slices longer than the stack scratch (100
+    /// coordinates, y of 200 > [`STACK_LEN`] = 192) is the same arithmetic
+    /// on the heap.
+    #[test]
+    fn a_first_order_step_beyond_the_stack_scratch_runs() {
+        let euler = |y: &mut [f64], h: f64, f: &Force<f64>| {
+            let mut dy = vec![0.0; y.len()];
+            f(y, &mut dy);
+            for (y, dy) in y.iter_mut().zip(&dy) {
+                *y += h * dy;
+            }
+        };
+        let step = Shape::first_order_on_slices(
+            move |_: &mut (), y: &mut [f64], h: f64, f: &Force<f64>| euler(y, h, f),
+        );
+        let (mut q, mut v) = (vec![1.0; 100], vec![0.5; 100]);
+        let spring = |x: &[f64], a: &mut [f64]| {
+            for (a, x) in a.iter_mut().zip(x) {
+                *a = -x;
+            }
+        };
+        step(&mut (), &mut q, &mut v, 0.1, &spring).unwrap();
+        assert!(
+            q.iter().all(|&q| q == 1.05) && v.iter().all(|&v| v == 0.4),
+            "{q:?} {v:?}"
+        );
     }
 
     #[test]

@@ -48,9 +48,12 @@
 //! guard::assert_symplectic(&theirs, &KeplerCircular);
 //! ```
 //!
-//! An integrator on its own vector type needs a small adapter: copy the
-//! slices into the type, call the step, copy back. The copies cost a few
-//! loads and stores per step, and nothing is allocated.
+//! Integrators in other shapes (a first-order system on `y = [q, v]`, a step
+//! on `(q, p)`, a step on the integrator's own vector type, a right-hand
+//! side on slices) are adapted by [`BlackBox::first_order`],
+//! [`BlackBox::canonical`], [`BlackBox::on_vectors`] and, combined with
+//! state kept between steps or a reported solve, by the [`super::Shape`]
+//! pieces passed to [`BlackBox::stateful`] and [`BlackBox::implicit`].
 
 use crate::scene::Scene;
 use crate::scheme::{Scheme, SchemeMeta, StepFailure};
@@ -134,8 +137,15 @@ pub trait BlackBoxStep<T> {
     type Kept: Clone + Send + Sync;
     /// The state at the start of a run.
     fn fresh(&self) -> Self::Kept;
-    /// One step of size `h`.
-    fn advance(&self, kept: &mut Self::Kept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>);
+    /// One step of size `h`, or why it could not be taken.
+    fn advance(
+        &self,
+        kept: &mut Self::Kept,
+        q: &mut [T],
+        v: &mut [T],
+        h: T,
+        force: &Force<'_, T>,
+    ) -> Result<(), StepFailure>;
     /// The solves of the run so far, for a step that reports them
     /// ([`BlackBox::implicit`]); `None` otherwise.
     fn tally(&self, _kept: &Self::Kept) -> Option<SolveTally> {
@@ -187,15 +197,51 @@ impl SolveTally {
     }
 }
 
-impl<T, F> BlackBoxStep<T> for F
+/// What a wrapped step returns: nothing (`()`), its solve ([`Solve`], for
+/// [`BlackBox::implicit`]), or either in a `Result` whose `Err` says why the
+/// step could not be taken (a solve that did not converge, a vector type
+/// that cannot hold the scene's state). A failed step ends the run and is
+/// reported as a breakdown at that step, never as instability.
+pub trait StepReturn<R> {
+    /// The step's result.
+    fn into_step(self) -> Result<R, StepFailure>;
+}
+
+impl StepReturn<()> for () {
+    fn into_step(self) -> Result<(), StepFailure> {
+        Ok(())
+    }
+}
+
+impl StepReturn<Solve> for Solve {
+    fn into_step(self) -> Result<Solve, StepFailure> {
+        Ok(self)
+    }
+}
+
+impl<R> StepReturn<R> for Result<R, StepFailure> {
+    fn into_step(self) -> Result<R, StepFailure> {
+        self
+    }
+}
+
+impl<T, F, O> BlackBoxStep<T> for F
 where
-    F: Fn(&mut [T], &mut [T], T, &Force<'_, T>),
+    F: Fn(&mut [T], &mut [T], T, &Force<'_, T>) -> O,
+    O: StepReturn<()>,
 {
     type Kept = ();
     fn fresh(&self) {}
     #[inline(always)]
-    fn advance(&self, _: &mut (), q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
-        (self)(q, v, h, force)
+    fn advance(
+        &self,
+        _: &mut (),
+        q: &mut [T],
+        v: &mut [T],
+        h: T,
+        force: &Force<'_, T>,
+    ) -> Result<(), StepFailure> {
+        (self)(q, v, h, force).into_step()
     }
 }
 
@@ -207,29 +253,38 @@ pub struct Stateful<I, F> {
     step: F,
 }
 
-impl<T, K, I, F> BlackBoxStep<T> for Stateful<I, F>
+impl<T, K, I, F, O> BlackBoxStep<T> for Stateful<I, F>
 where
     K: Clone + Send + Sync,
     I: Fn() -> K,
-    F: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>),
+    F: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> O,
+    O: StepReturn<()>,
 {
     type Kept = K;
     fn fresh(&self) -> K {
         (self.fresh)()
     }
     #[inline(always)]
-    fn advance(&self, kept: &mut K, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
-        (self.step)(kept, q, v, h, force)
+    fn advance(
+        &self,
+        kept: &mut K,
+        q: &mut [T],
+        v: &mut [T],
+        h: T,
+        force: &Force<'_, T>,
+    ) -> Result<(), StepFailure> {
+        (self.step)(kept, q, v, h, force).into_step()
     }
 }
 
-impl<T, F> BlackBox<T, F>
-where
-    T: Float,
-    F: Fn(&mut [T], &mut [T], T, &Force<'_, T>),
-{
-    /// Wraps `step` with its claims.
-    pub const fn new(meta: SchemeMeta, step: F) -> Self {
+impl<T: Float, F> BlackBox<T, F> {
+    /// Wraps `step` with its claims. The step returns nothing, or
+    /// `Result<(), StepFailure>` to say why it could not be taken.
+    pub const fn new<O>(meta: SchemeMeta, step: F) -> Self
+    where
+        F: Fn(&mut [T], &mut [T], T, &Force<'_, T>) -> O,
+        O: StepReturn<()>,
+    {
         Self {
             meta,
             step,
@@ -269,7 +324,7 @@ impl<T: Float> BlackBox<T, ()> {
     /// guard::assert_evaluations(&theirs, &Harmonic::default());
     /// # use stepladder::scheme::Scheme;
     /// ```
-    pub const fn stateful<K, I, S>(
+    pub const fn stateful<K, I, S, O>(
         meta: SchemeMeta,
         fresh: I,
         step: S,
@@ -277,7 +332,8 @@ impl<T: Float> BlackBox<T, ()> {
     where
         K: Clone + Send + Sync,
         I: Fn() -> K,
-        S: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>),
+        S: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> O,
+        O: StepReturn<()>,
     {
         BlackBox {
             meta,
@@ -295,20 +351,29 @@ pub struct Implicit<I, F> {
     step: F,
 }
 
-impl<T, K, I, F> BlackBoxStep<T> for Implicit<I, F>
+impl<T, K, I, F, O> BlackBoxStep<T> for Implicit<I, F>
 where
     K: Clone + Send + Sync,
     I: Fn() -> K,
-    F: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> Solve,
+    F: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> O,
+    O: StepReturn<Solve>,
 {
     type Kept = (K, SolveTally);
     fn fresh(&self) -> Self::Kept {
         ((self.fresh)(), SolveTally::default())
     }
     #[inline(always)]
-    fn advance(&self, kept: &mut Self::Kept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
-        let solve = (self.step)(&mut kept.0, q, v, h, force);
+    fn advance(
+        &self,
+        kept: &mut Self::Kept,
+        q: &mut [T],
+        v: &mut [T],
+        h: T,
+        force: &Force<'_, T>,
+    ) -> Result<(), StepFailure> {
+        let solve = (self.step)(&mut kept.0, q, v, h, force).into_step()?;
         kept.1.add(solve);
+        Ok(())
     }
     fn tally(&self, kept: &Self::Kept) -> Option<SolveTally> {
         Some(kept.1)
@@ -365,7 +430,7 @@ impl<T: Float> BlackBox<T, ()> {
     /// guard::assert_order(&theirs, &Harmonic::default());
     /// guard::assert_evaluations(&theirs, &Harmonic::default());
     /// ```
-    pub const fn implicit<K, I, S>(
+    pub const fn implicit<K, I, S, O>(
         meta: SchemeMeta,
         fresh: I,
         step: S,
@@ -373,7 +438,8 @@ impl<T: Float> BlackBox<T, ()> {
     where
         K: Clone + Send + Sync,
         I: Fn() -> K,
-        S: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> Solve,
+        S: Fn(&mut K, &mut [T], &mut [T], T, &Force<'_, T>) -> O,
+        O: StepReturn<Solve>,
     {
         BlackBox {
             meta: SchemeMeta {
@@ -423,13 +489,20 @@ impl<T: Float, F: BlackBoxStep<T>> BlackBox<T, F> {
     ///     },
     /// );
     /// let (mut q, mut v) = ([1.0], [0.0]);
-    /// verlet.step_once(&mut q, &mut v, 0.5, &|x: &[f64], a: &mut [f64]| a[0] = -x[0]);
+    /// verlet.step_once(&mut q, &mut v, 0.5, &|x: &[f64], a: &mut [f64]| a[0] = -x[0])?;
     /// // on q'' = -q from (1, 0): q = 1 - h^2/2, v = -h (1 - h^2/4)
     /// assert_eq!((q[0], v[0]), (0.875, -0.46875));
+    /// # Ok::<(), stepladder::scheme::StepFailure>(())
     /// ```
-    pub fn step_once(&self, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+    pub fn step_once(
+        &self,
+        q: &mut [T],
+        v: &mut [T],
+        h: T,
+        force: &Force<'_, T>,
+    ) -> Result<(), StepFailure> {
         let mut kept = self.step.fresh();
-        self.step.advance(&mut kept, q, v, h, force);
+        self.step.advance(&mut kept, q, v, h, force)
     }
 }
 
@@ -471,7 +544,14 @@ impl Clone for AnyKept {
 /// [`BlackBoxStep`] with its kept state behind [`AnyKept`].
 trait ErasedStep<T> {
     fn fresh(&self) -> AnyKept;
-    fn advance(&self, kept: &mut AnyKept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>);
+    fn advance(
+        &self,
+        kept: &mut AnyKept,
+        q: &mut [T],
+        v: &mut [T],
+        h: T,
+        force: &Force<'_, T>,
+    ) -> Result<(), StepFailure>;
     fn tally(&self, kept: &AnyKept) -> Option<SolveTally>;
 }
 
@@ -483,7 +563,14 @@ where
     fn fresh(&self) -> AnyKept {
         AnyKept(Box::new(BlackBoxStep::fresh(self)))
     }
-    fn advance(&self, kept: &mut AnyKept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+    fn advance(
+        &self,
+        kept: &mut AnyKept,
+        q: &mut [T],
+        v: &mut [T],
+        h: T,
+        force: &Force<'_, T>,
+    ) -> Result<(), StepFailure> {
         // the kept state was made by this step's `fresh`: its type is F::Kept
         let kept = kept
             .0
@@ -503,7 +590,14 @@ impl<T> BlackBoxStep<T> for AnyStep<T> {
     fn fresh(&self) -> AnyKept {
         self.0.fresh()
     }
-    fn advance(&self, kept: &mut AnyKept, q: &mut [T], v: &mut [T], h: T, force: &Force<'_, T>) {
+    fn advance(
+        &self,
+        kept: &mut AnyKept,
+        q: &mut [T],
+        v: &mut [T],
+        h: T,
+        force: &Force<'_, T>,
+    ) -> Result<(), StepFailure> {
         self.0.advance(kept, q, v, h, force)
     }
     fn tally(&self, kept: &AnyKept) -> Option<SolveTally> {
@@ -633,7 +727,7 @@ where
             }
         };
         self.step
-            .advance(&mut carry.kept, &mut q, &mut v, T::from_f64(h), &force);
+            .advance(&mut carry.kept, &mut q, &mut v, T::from_f64(h), &force)?;
         for i in 0..D {
             state.q[i] = q[i].to_f64();
             state.v[i] = v[i].to_f64();

@@ -7,25 +7,34 @@
 //! synchronised `(q, v)` at whole steps so they compare like with like.
 
 mod adapter;
+mod adaptive;
+mod adaptive_black_box;
 mod black_box;
 mod catalogue;
 #[doc(hidden)]
 pub mod compensated;
 mod composition;
+mod embedded_pair;
 mod euler;
 mod implicit;
 mod multistep;
 mod nystrom_rk;
 mod nystrom_splitting;
+mod nystrom_tables;
 mod runge_kutta;
 mod single_precision;
 mod splitting;
 mod verlet;
 
-pub use adapter::{Hamiltonian, Rhs, Vector, VectorForce};
+pub use adapter::{Hamiltonian, Rhs, Shape, Vector, VectorForce};
+pub use adaptive::{
+    AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request,
+    proportionality_exponent,
+};
+pub use adaptive_black_box::{AdaptiveBlackBox, Advance, AdvanceFn};
 pub use black_box::{
     AnyBlackBox, AnyKept, AnyStep, BlackBox, BlackBoxCarry, BlackBoxStep, Float, Force, Implicit,
-    Solve, SolveTally, Stateful, StepFn,
+    Solve, SolveTally, Stateful, StepFn, StepReturn,
 };
 pub use catalogue::{SchemeVisitor, TABLES, catalogue, scheme_ids, visit_scheme};
 pub use compensated::{
@@ -33,13 +42,15 @@ pub use compensated::{
     StormerVerletCompensated, Summed, TwoStepCompensated, VELOCITY_VERLET_COMPENSATED,
 };
 pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
+pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
 pub use euler::Euler;
 pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
 pub use multistep::{MultistepCarry, QUINLAN_TREMAINE8, SymmetricMultistep};
-pub use nystrom_rk::{DPRKN6, DPRKN8, Embedded, NYSTROM4, NystromStep, NystromTable};
+pub use nystrom_rk::{Embedded, NystromStep, NystromTable};
 pub use nystrom_splitting::{
     BLANES_MOAN_SRKN11, MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5,
 };
+pub use nystrom_tables::{DPRKN6, DPRKN8, NYSTROM4};
 pub use runge_kutta::Rk4;
 pub use single_precision::{SingleCarry, SinglePrecision};
 pub use splitting::{EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
@@ -198,12 +209,30 @@ pub enum StepFailure {
         /// The panic's message.
         message: String,
     },
+    /// The step cannot run on this scene at all (an adapter's fixed-size
+    /// vector type of another length than the scene's state, masses for
+    /// another dimension): a defect of the wrapping, at every step size.
+    #[error("the step cannot run on this scene: {message}")]
+    Unfit {
+        /// What does not fit.
+        message: String,
+    },
 }
 
 impl StepFailure {
     /// True for a panic in the scheme's code.
     pub fn panicked(&self) -> bool {
         matches!(self, StepFailure::Panicked { .. })
+    }
+
+    /// True for a failure no step size excuses: a panic, or a step that
+    /// cannot run on the scene. A solve that did not converge may be the
+    /// step's size at work (a stiff step), and is judged like a blow-up.
+    pub fn defect(&self) -> bool {
+        matches!(
+            self,
+            StepFailure::Panicked { .. } | StepFailure::Unfit { .. }
+        )
     }
 }
 

@@ -8,6 +8,10 @@
 //!    states within [`crate::tolerance::blow_up_bound`] and a finite,
 //!    nonzero step; code that panics there has no answer for a legitimate
 //!    input. The claim that depends on the run fails, with where it happened.
+//!    So does a step that cannot run on the scene at all
+//!    ([`crate::scheme::StepFailure::Unfit`]: a wrapped integrator's vector
+//!    type of another length than the scene's state), which no step size
+//!    changes.
 //! 2. **A breakdown at a finer step than a resolved run is a defect.** Linear
 //!    instability grows with the step: a one-step map applied to `y' = L y`
 //!    multiplies each mode by `R(h lambda)`, and every consistent method has
@@ -80,11 +84,12 @@ impl Breakdown {
             self.steps,
             self.outcome.where_and_why()
         );
-        match (self.panicked(), self.clean_h) {
-            (true, _) => format!(
+        match (self.defect(), self.clean_h) {
+            (true, _) if self.outcome.panicked() => format!(
                 "{head}: a panic in the scheme's code, which no finite state within the blow-up \
                  bound excuses"
             ),
+            (true, _) => format!("{head}: the step does not fit the scene, at any step size"),
             (false, Some(clean)) => format!(
                 "{head}, while the coarser h = {} ran cleanly (error {} of the orbit, within the \
                  ceiling {ERROR_CEILING}): instability grows with the step, so a run that stops \
@@ -96,9 +101,10 @@ impl Breakdown {
         }
     }
 
-    /// True for a panic in the scheme's code.
-    pub fn panicked(&self) -> bool {
-        self.outcome.panicked()
+    /// True for a failure no step size excuses: a panic in the scheme's
+    /// code, or a step that cannot run on the scene at all.
+    pub fn defect(&self) -> bool {
+        self.outcome.defect()
     }
 }
 
@@ -126,7 +132,7 @@ pub(crate) fn in_ladder(runs: &[LadderRun<'_>]) -> Option<Breakdown> {
     let coarsest_first = |a: &&LadderRun<'_>, b: &&LadderRun<'_>| b.h.total_cmp(&a.h);
     if let Some(p) = runs
         .iter()
-        .filter(|r| r.outcome.panicked())
+        .filter(|r| r.outcome.defect())
         .min_by(coarsest_first)
     {
         return Some(breakdown(p, None));
@@ -153,8 +159,8 @@ pub(crate) fn in_ladder(runs: &[LadderRun<'_>]) -> Option<Breakdown> {
 /// stopped.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Probe {
-    /// A panic: a defect at any step.
-    Panicked(Breakdown),
+    /// A panic or an unfit step: a defect at any step.
+    Defect(Breakdown),
     /// A finer step ran the same span: the stop is instability at this
     /// step.
     Unstable {
@@ -181,7 +187,7 @@ impl Probe {
     /// The probe's finding as a clause for a study's reason.
     pub(crate) fn describe(&self, h: f64, stop: &Outcome) -> String {
         match self {
-            Probe::Panicked(b) | Probe::Breakdown(b) => b.describe(),
+            Probe::Defect(b) | Probe::Breakdown(b) => b.describe(),
             Probe::Unstable { finer, z, limit } => format!(
                 "{}: unstable at h = {}, where h/{} = {} runs the same span cleanly{}",
                 stop.brief(),
@@ -212,7 +218,7 @@ impl Probe {
     /// The defect, where the stop is one.
     pub(crate) fn breakdown(&self) -> Option<&Breakdown> {
         match self {
-            Probe::Panicked(b) | Probe::Breakdown(b) => Some(b),
+            Probe::Defect(b) | Probe::Breakdown(b) => Some(b),
             _ => None,
         }
     }
@@ -250,13 +256,13 @@ pub(crate) fn probe<M: Scheme, S: Scene<D>, const D: usize>(
         clean_error: None,
         run,
     };
-    if stop.panicked() {
-        return Probe::Panicked(broken("the run"));
+    if stop.defect() {
+        return Probe::Defect(broken("the run"));
     }
     let span = steps_run as f64 * h.abs();
     // a panic in a probe's run is a defect as much as one in the run itself
     let panicked = |steps: u64, outcome: Outcome| {
-        Probe::Panicked(Breakdown {
+        Probe::Defect(Breakdown {
             steps,
             outcome,
             clean_h: None,
@@ -352,7 +358,7 @@ fn run_over<M: Scheme, S: Scene<D>, const D: usize>(
             worst.max(energy).max(phase)
         };
     });
-    if outcome.panicked() {
+    if outcome.defect() {
         return Err(outcome);
     }
     Ok(ProbeRun {

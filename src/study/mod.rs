@@ -56,10 +56,8 @@ pub use accuracy::phase::{PhaseRecord, phase_error};
 pub use accuracy::pin::{Pin, PinOutcome, check_pin};
 pub use accuracy::scene_check::{SceneCheck, check_scene};
 pub use adaptive::{
-    AdaptiveBlackBox, AdaptiveClaim, AdaptiveClaims, AdaptiveIntegrator, AdaptivePin,
-    AdaptivePinOutcome, AdaptiveRun, Advance, AdvanceFn, Controller, DPRKN6_ADAPTIVE,
-    DPRKN8_ADAPTIVE, EmbeddedPair, JudgedClaim, RunEnd, ToleranceLadderRecord, ToleranceLadderSpec,
-    TolerancePoint, check_adaptive_pin, tolerance_ladder,
+    AdaptiveClaim, AdaptivePin, AdaptivePinOutcome, JudgedClaim, ToleranceLadderRecord,
+    ToleranceLadderSpec, TolerancePoint, check_adaptive_pin, tolerance_ladder,
 };
 pub use cost::evaluations::{EvaluationRecord, evaluations};
 pub use cost::step_time::{SpeedRecord, speed};

@@ -7,7 +7,7 @@ use clap::Args;
 use serde::Serialize;
 use std::process::ExitCode;
 use stepladder::error::Error;
-use stepladder::parallel::default_threads;
+use stepladder::internals::parallel::default_threads;
 use stepladder::scene::AnyScene;
 
 #[derive(Debug, Args)]
@@ -32,10 +32,10 @@ pub(super) struct RoundoffArgs {
 #[derive(Debug, Args)]
 pub(super) struct SpeedArgs {
     /// Timed runs per scheme; the fastest is kept.
-    #[arg(long, default_value_t = stepladder::study::cost::step_time::SPEED_REPEATS)]
+    #[arg(long, default_value_t = stepladder::internals::cost::step_time::SPEED_REPEATS)]
     repeats: usize,
     /// Steps per timed run.
-    #[arg(long, default_value_t = stepladder::study::cost::step_time::SPEED_STEPS)]
+    #[arg(long, default_value_t = stepladder::internals::cost::step_time::SPEED_STEPS)]
     steps: u64,
     /// Print the record as JSON.
     #[arg(long)]
@@ -74,7 +74,7 @@ pub(super) struct WorkArgs {
 }
 
 pub(super) fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {
-    use stepladder::study::round_off::floor::{RoundoffSpec, assemble, roundoff, study_pair};
+    use stepladder::internals::round_off::floor::{RoundoffSpec, assemble, roundoff, study_pair};
     let scene = AnyScene::parse(&args.scene)?;
     let spec = RoundoffSpec {
         periods: args.periods,
@@ -91,7 +91,7 @@ pub(super) fn roundoff(args: &RoundoffArgs) -> Result<ExitCode, Error> {
             "{} ({}), {} periods, up to {} steps",
             record.scene,
             record.scene_parameters,
-            stepladder::wording::exact(record.periods),
+            stepladder::internals::wording::exact(record.periods),
             record.max_steps
         );
         print!("{}", report::round_off::floor_table(&record));
@@ -121,8 +121,8 @@ pub(super) fn speed(args: &SpeedArgs) -> Result<ExitCode, Error> {
     }
     // counted in floating point, so that a refusal prints the true count
     let runs = args.repeats as f64 * (stepladder::scheme::scheme_ids().len() + 1) as f64;
-    stepladder::ladder::check_count(args.steps as f64 * runs)?;
-    let record = stepladder::study::cost::step_time::speed(args.steps, args.repeats);
+    stepladder::internals::ladder::check_count(args.steps as f64 * runs)?;
+    let record = stepladder::internals::cost::step_time::speed(args.steps, args.repeats);
     if args.json {
         print_json(&record);
     } else {
@@ -132,19 +132,19 @@ pub(super) fn speed(args: &SpeedArgs) -> Result<ExitCode, Error> {
 }
 
 pub(super) fn longrun(args: &LongrunArgs) -> Result<ExitCode, Error> {
-    use stepladder::study::round_off::longrun::{LongrunSpec, longrun_of};
+    use stepladder::internals::round_off::longrun::{LongrunSpec, longrun_of};
     let scene = AnyScene::parse(&args.scene)?;
     let spec = LongrunSpec { steps: args.steps };
     let ids = match &args.scheme {
         Some(id) => vec![id.as_str()],
-        None => stepladder::scheme::compensated::pair_ids(),
+        None => stepladder::internals::compensated::pair_ids(),
     };
     // refuse the whole request up front, not after some runs
     let per_scheme =
         args.steps
-            .unwrap_or(stepladder::study::round_off::longrun::DEFAULT_STEPS) as f64
-            * stepladder::study::round_off::longrun::RUNS as f64;
-    stepladder::ladder::check_count(per_scheme * ids.len() as f64)?;
+            .unwrap_or(stepladder::internals::round_off::longrun::DEFAULT_STEPS) as f64
+            * stepladder::internals::round_off::longrun::RUNS as f64;
+    stepladder::internals::ladder::check_count(per_scheme * ids.len() as f64)?;
     let records = ids
         .into_iter()
         .map(|id| longrun_of(&scene, id, &spec))
@@ -164,7 +164,7 @@ struct WorkOutput {
     record: crate::suite::work_precision::WorkRecord,
     timing: crate::suite::work_precision::WorkTiming,
     /// The tolerance ladders of the adaptive integrators on the same scene.
-    adaptive: Vec<stepladder::study::adaptive::ToleranceLadderRecord>,
+    adaptive: Vec<stepladder::internals::adaptive::ToleranceLadderRecord>,
 }
 
 pub(super) fn work(args: &WorkArgs) -> Result<ExitCode, Error> {
@@ -186,7 +186,7 @@ pub(super) fn work(args: &WorkArgs) -> Result<ExitCode, Error> {
             crate::suite::adaptive::ladder_of(
                 i,
                 &scene,
-                &stepladder::study::adaptive::ToleranceLadderSpec::default(),
+                &stepladder::internals::adaptive::ToleranceLadderSpec::default(),
             )
         })
         .collect::<Result<Vec<_>, Error>>()?;

@@ -7,16 +7,16 @@ use clap::Args;
 use serde::Serialize;
 use std::process::ExitCode;
 use stepladder::error::Error;
-use stepladder::parallel::default_threads;
-use stepladder::scene::{KeplerEccentric, Separatrix};
-use stepladder::scheme::scheme_ids;
-use stepladder::study::hard::eccentric::{
+use stepladder::internals::hard::eccentric::{
     ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, ORDER_SCHEMES, OrderStatus,
     RoundOffRecord,
 };
-use stepladder::study::hard::escape::{EscapeRecord, EscapeSpec};
-use stepladder::study::hard::following::{FollowingRecord, WellSpec};
-use stepladder::tolerance::ECCENTRIC_MAX_RUNG_STEPS;
+use stepladder::internals::hard::escape::{EscapeRecord, EscapeSpec};
+use stepladder::internals::hard::following::{FollowingRecord, WellSpec};
+use stepladder::internals::parallel::default_threads;
+use stepladder::internals::tolerance::ECCENTRIC_MAX_RUNG_STEPS;
+use stepladder::scene::{KeplerEccentric, Separatrix};
+use stepladder::scheme::scheme_ids;
 
 #[derive(Debug, Args)]
 pub(super) struct EccentricArgs {
@@ -105,15 +105,15 @@ pub(super) fn eccentric(a: &EccentricArgs) -> Result<ExitCode, Error> {
     let cap = a.max_rung_steps.unwrap_or(ECCENTRIC_MAX_RUNG_STEPS);
     // the rung cap in force evaluations, for schemes of up to 17 a step,
     // within the automatic ladder's range (AutoLadder::checked)
-    let most = stepladder::ladder::MAX_TOTAL_STEPS / 4 / 17;
-    if !(stepladder::ladder::MIN_RUNG_EVALUATIONS..=most).contains(&cap) {
+    let most = stepladder::internals::ladder::MAX_TOTAL_STEPS / 4 / 17;
+    if !(stepladder::internals::ladder::MIN_RUNG_EVALUATIONS..=most).contains(&cap) {
         return Err(Error::OutOfRange {
             name: "max-rung-steps",
             value: cap as f64,
             expected: format!(
                 "a number of steps in [{}, {most}]: enough for a window's rungs, and a ladder \
                  within the step limit for a scheme of 17 force evaluations a step",
-                stepladder::ladder::MIN_RUNG_EVALUATIONS
+                stepladder::internals::ladder::MIN_RUNG_EVALUATIONS
             ),
         });
     }

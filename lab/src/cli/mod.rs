@@ -11,18 +11,18 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use stepladder::error::Error;
-use stepladder::ladder::{AUTO_START, Ladder, LadderChoice};
-use stepladder::parallel::default_threads;
+use stepladder::internals::accuracy::order::{OrderRecord, OrderSpec};
+use stepladder::internals::case::case;
+use stepladder::internals::geometry::energy::EnergySpec;
+use stepladder::internals::geometry::reverse::ReverseSpec;
+use stepladder::internals::geometry::symplectic::SymplecticSpec;
+use stepladder::internals::ladder::{AUTO_START, Ladder, LadderChoice};
+use stepladder::internals::parallel::default_threads;
+use stepladder::internals::stability::{StabilityRecord, stability};
+use stepladder::internals::wording::exact;
 use stepladder::scene::AnyScene;
 use stepladder::scheme::catalogue;
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::order::{OrderRecord, OrderSpec};
-use stepladder::study::case::case;
-use stepladder::study::geometry::energy::EnergySpec;
-use stepladder::study::geometry::reverse::ReverseSpec;
-use stepladder::study::geometry::symplectic::SymplecticSpec;
-use stepladder::study::stability::{StabilityRecord, stability};
-use stepladder::wording::exact;
 
 mod cost_commands;
 mod hard_commands;
@@ -118,7 +118,7 @@ struct CaseArgs {
 }
 
 impl CaseArgs {
-    fn case(&self) -> Result<Box<dyn stepladder::study::case::Case>, Error> {
+    fn case(&self) -> Result<Box<dyn stepladder::internals::case::Case>, Error> {
         case(&self.scheme, &AnyScene::parse(&self.scene)?)
     }
 }

@@ -25,10 +25,10 @@ pub mod scenes;
 pub use pairs::{broken as broken_pairs, correct as correct_pairs, entries};
 
 use serde::Serialize;
+use stepladder::internals::case::{Bound, Case};
 use stepladder::scene::Scene;
 use stepladder::scheme::Scheme;
 use stepladder::study::Verdict;
-use stepladder::study::case::{Bound, Case};
 
 /// What one claim of a corpus entry must be judged.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -277,10 +277,10 @@ impl Outcome {
 
 /// Runs every study of `entry` and judges its claims.
 pub fn judge(entry: &Entry) -> Result<Outcome, stepladder::error::Error> {
-    use stepladder::study::accuracy::order::OrderSpec;
-    use stepladder::study::geometry::energy::EnergySpec;
-    use stepladder::study::geometry::reverse::ReverseSpec;
-    use stepladder::study::geometry::symplectic::SymplecticSpec;
+    use stepladder::internals::accuracy::order::OrderSpec;
+    use stepladder::internals::geometry::energy::EnergySpec;
+    use stepladder::internals::geometry::reverse::ReverseSpec;
+    use stepladder::internals::geometry::symplectic::SymplecticSpec;
     let c = &entry.case;
     let order = c.order(&OrderSpec::default())?;
     let energy = c.energy(&EnergySpec::default())?;
@@ -325,7 +325,7 @@ pub fn judge_all(
     threads: usize,
     finished: &(dyn Fn(usize, &Entry) + Sync),
 ) -> Result<Vec<Outcome>, stepladder::error::Error> {
-    stepladder::parallel::parallel_map(entries, threads, judge, finished)
+    stepladder::internals::parallel::parallel_map(entries, threads, judge, finished)
         .into_iter()
         .collect()
 }

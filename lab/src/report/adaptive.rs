@@ -5,9 +5,11 @@
 use super::markdown::{Table, opt, order, sci};
 use crate::suite::adaptive::AdaptiveRecords;
 use std::fmt::Write as _;
-use stepladder::study::adaptive::ladder::{ENERGY_PERIODS, GEOMETRY_TOLERANCE, ROUND_OFF_SHARE};
-use stepladder::study::adaptive::record::{MIN_FIT_POINTS, ToleranceLadderRecord};
-use stepladder::tolerance::ERROR_CEILING;
+use stepladder::internals::adaptive::ladder::{
+    ENERGY_PERIODS, GEOMETRY_TOLERANCE, ROUND_OFF_SHARE,
+};
+use stepladder::internals::adaptive::record::{MIN_FIT_POINTS, ToleranceLadderRecord};
+use stepladder::internals::tolerance::ERROR_CEILING;
 
 /// The tolerances whose costs the summary table shows.
 pub const SHOWN_TOLERANCES: [f64; 3] = [1e-6, 1e-9, 1e-12];

@@ -12,11 +12,11 @@ use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use stepladder::error::Error;
+use stepladder::internals::accuracy::order::OrderRecord;
+use stepladder::internals::accuracy::trajectory::TrajectoryRecord;
+use stepladder::internals::geometry::energy::EnergyRecord;
+use stepladder::internals::stability::StabilityRecord;
 use stepladder::study::ToleranceLadderRecord;
-use stepladder::study::accuracy::order::OrderRecord;
-use stepladder::study::accuracy::trajectory::TrajectoryRecord;
-use stepladder::study::geometry::energy::EnergyRecord;
-use stepladder::study::stability::StabilityRecord;
 
 /// The catalogue in panels of at most [`super::plot::MAX_SERIES`] schemes, by family,
 /// so that every series of a panel has a colour and a marker of its own.

@@ -5,14 +5,14 @@
 use super::markdown::{Table, opt, sci};
 use crate::suite::hard_cases::{ESCAPE_DELTAS, HardCases, NAIVE_STEP};
 use std::fmt::Write as _;
-use stepladder::scheme::scheme_ids;
-use stepladder::study::hard::eccentric::{
+use stepladder::internals::hard::eccentric::{
     ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, KickLag, OrbitEnergy, OrderStatus,
     RoundOffRecord, kick_lag, short_ratio,
 };
-use stepladder::study::hard::escape::{EscapeRecord, Misclassified};
-use stepladder::study::hard::following::{Event, FollowingRecord, LineFit};
-use stepladder::tolerance;
+use stepladder::internals::hard::escape::{EscapeRecord, Misclassified};
+use stepladder::internals::hard::following::{Event, FollowingRecord, LineFit};
+use stepladder::internals::tolerance;
+use stepladder::scheme::scheme_ids;
 
 /// The whole section.
 pub fn hard_cases_section(hard: &HardCases) -> String {
@@ -418,7 +418,7 @@ pub fn following_rungs(r: &FollowingRecord) -> String {
             match (g.used, g.dropped) {
                 (true, _) => "fitted".to_string(),
                 (false, Some(d)) => match d {
-                    stepladder::study::accuracy::order::DropReason::AboveCeiling => {
+                    stepladder::internals::accuracy::order::DropReason::AboveCeiling => {
                         "offset above the ceiling".to_string()
                     }
                     d => d.explain().to_string(),

@@ -27,15 +27,15 @@ use crate::suite::{CaseRecords, SuiteRecords};
 use std::fmt::Write as _;
 use std::path::Path;
 use stepladder::error::Error;
-use stepladder::ladder::LadderChoice;
+use stepladder::internals::accuracy::order::OrderRecord;
+use stepladder::internals::accuracy::phase::PhaseRecord;
+use stepladder::internals::accuracy::scene_check::SceneCheck;
+use stepladder::internals::ladder::LadderChoice;
+use stepladder::internals::stability::{GROWTH_AT, GrowthSource, StabilityRecord};
+use stepladder::internals::tolerance;
 use stepladder::scene::AnyScene;
 use stepladder::scheme::catalogue;
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::order::OrderRecord;
-use stepladder::study::accuracy::phase::PhaseRecord;
-use stepladder::study::accuracy::scene_check::SceneCheck;
-use stepladder::study::stability::{GROWTH_AT, GrowthSource, StabilityRecord};
-use stepladder::tolerance;
 
 /// The line that separates the deterministic report from the timings.
 pub const MACHINE_MARKER: &str =
@@ -284,12 +284,12 @@ fn geometry_method() -> String {
          in coordinates `(q, v/w)`; symplectic when `max |J^T Omega J - Omega| <= {:e}`.\n\
          - **Reversibility.** {} steps of 1/100 period forward, then back with `-h`; the \
          return error in units of `eps * scale`, time-symmetric when within `16 N`.\n\n",
-        stepladder::study::geometry::energy::DEFAULT_PERIODS,
-        (1.0 / stepladder::study::geometry::energy::DEFAULT_STEP).round(),
+        stepladder::internals::geometry::energy::DEFAULT_PERIODS,
+        (1.0 / stepladder::internals::geometry::energy::DEFAULT_STEP).round(),
         tolerance::GROWTH_DECADES,
         tolerance::LOST_FRACTION,
         tolerance::SYMPLECTIC_TOLERANCE,
-        stepladder::study::geometry::reverse::DEFAULT_STEPS,
+        stepladder::internals::geometry::reverse::DEFAULT_STEPS,
     )
 }
 
@@ -324,7 +324,7 @@ pub fn geometry_table(cases: &[CaseRecords]) -> String {
                 "{}{} (expect {})",
                 e.class.map_or("-", |c| c.name()),
                 match e.outcome {
-                    stepladder::run::Outcome::Completed => "",
+                    stepladder::internals::run::Outcome::Completed => "",
                     _ => ", blew up",
                 },
                 e.expected.name()
@@ -494,7 +494,7 @@ fn growth_table(records: &[StabilityRecord]) -> String {
 
 /// The course notes' Earth-Sun runs: a table of where they end, and the
 /// relative energy error against time as a chart.
-pub fn earth_sun(runs: &[stepladder::study::accuracy::trajectory::TrajectoryRecord]) -> String {
+pub fn earth_sun(runs: &[stepladder::internals::accuracy::trajectory::TrajectoryRecord]) -> String {
     let mut out = String::from(
         "The course notes' two runs of the circular Earth-Sun orbit for ten years: explicit \
          Euler with `dt = 0.001` and velocity Verlet with `dt = 0.01`. Euler's energy grows \
@@ -625,8 +625,8 @@ fn method() -> String {
          (a straight line through smooth errors would turn them into bias); `p` with \
          Student's t 95% interval, widened by how far `p` moves when the window loses one or \
          two end rungs and by how far the local orders extrapolate from it.\n\n",
-        stepladder::study::accuracy::order::COMPARISONS,
-        stepladder::ladder::AUTO_MAX_RUNG_EVALUATIONS,
+        stepladder::internals::run::COMPARISONS,
+        stepladder::internals::ladder::AUTO_MAX_RUNG_EVALUATIONS,
         tolerance::ERROR_CEILING,
         tolerance::WINDOW_RUNGS,
     )

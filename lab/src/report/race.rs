@@ -9,7 +9,7 @@ use crate::suite::race::{
     NBODY_FIRST_STEPS, NBODY_FIRST_TOLERANCE, NbodyRecord, RACE_TARGETS, REFERENCE_SHARE,
     RaceRecords, RaceRow,
 };
-use stepladder::study::cost::work_points::Reach;
+use stepladder::internals::cost::work_points::Reach;
 
 /// A contender's name in a table.
 fn who(name: Option<&str>) -> String {

@@ -4,8 +4,8 @@
 use super::markdown::{Table, opt, sci};
 use crate::suite::round_off::RoundoffRecords;
 use std::fmt::Write as _;
-use stepladder::study::round_off::floor::{Floor, PairRecord, RoundoffRecord};
-use stepladder::study::round_off::longrun::LongrunRecord;
+use stepladder::internals::round_off::floor::{Floor, PairRecord, RoundoffRecord};
+use stepladder::internals::round_off::longrun::LongrunRecord;
 
 /// Both sections, as they appear in REPORT.md.
 pub fn sections(records: &RoundoffRecords) -> String {

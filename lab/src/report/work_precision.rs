@@ -7,8 +7,8 @@ use crate::peer::{PEER_TOLERANCES, peer_names};
 use crate::suite::race::RaceRecords;
 use crate::suite::work_precision::{Cheapest, Fastest, WorkRecord, WorkTiming};
 use std::fmt::Write as _;
-use stepladder::study::cost::step_time::SpeedRecord;
-use stepladder::study::cost::work_points::{
+use stepladder::internals::cost::step_time::SpeedRecord;
+use stepladder::internals::cost::work_points::{
     ENERGY_FLOOR_GUARD, ENERGY_MAX_STEPS, ENERGY_PERIODS, ENERGY_START, Reach, TARGETS, TargetCost,
 };
 

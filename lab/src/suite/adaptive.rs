@@ -6,12 +6,12 @@ use crate::peer::{IntegratorVisitor, PEERS, PeerId};
 use crate::suite::work_precision::PEER_REPEATS;
 use std::time::{Duration, Instant};
 use stepladder::error::Error;
-use stepladder::parallel::parallel_map;
-use stepladder::scene::{AnyScene, Scene, SceneVisitor};
-use stepladder::study::adaptive::{
-    AdaptiveIntegrator, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, ToleranceLadderRecord,
-    ToleranceLadderSpec, tolerance_ladder,
+use stepladder::internals::adaptive::{
+    ToleranceLadderRecord, ToleranceLadderSpec, tolerance_ladder,
 };
+use stepladder::internals::parallel::parallel_map;
+use stepladder::scene::{AnyScene, Scene, SceneVisitor};
+use stepladder::scheme::{AdaptiveIntegrator, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE};
 
 /// Which adaptive integrator a job runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -6,24 +6,24 @@
 
 use std::time::{Duration, Instant};
 use stepladder::error::Error;
-use stepladder::scene::KeplerEccentric;
-use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
-use stepladder::study::hard::eccentric::{
+use stepladder::internals::hard::eccentric::{
     ECCENTRICITIES, EccentricEnergyRecord, EccentricOrderRecord, ORDER_SCHEMES, Pericentre,
     RoundOffRecord, eccentric_energy, eccentric_order, stormer_round_off,
 };
-use stepladder::study::hard::escape::{EscapeRecord, EscapeSpec, escape_or_trapped};
-use stepladder::study::hard::following::{FollowingRecord, WellSpec, following};
-use stepladder::tolerance::{
+use stepladder::internals::hard::escape::{EscapeRecord, EscapeSpec, escape_or_trapped};
+use stepladder::internals::hard::following::{FollowingRecord, WellSpec, following};
+use stepladder::internals::tolerance::{
     ECCENTRIC_ENERGY_PERIODS, ECCENTRIC_MAX_RUNG_STEPS, ENERGY_STEPS_PER_PERICENTRE,
 };
+use stepladder::scene::KeplerEccentric;
+use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
 
 /// The energy gaps of the escape-or-trapped study in the report.
 pub const ESCAPE_DELTAS: [f64; 2] = [1e-2, 1e-3];
 
 /// The main energy study's step, in periods, used as the naive step on the
 /// eccentric orbits.
-pub const NAIVE_STEP: f64 = stepladder::study::geometry::energy::DEFAULT_STEP;
+pub const NAIVE_STEP: f64 = stepladder::internals::geometry::energy::DEFAULT_STEP;
 
 /// One unit of work.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -245,7 +245,7 @@ impl HardCases {
 
 /// Runs `jobs` on `threads` threads (at least one).
 pub fn run_hard_jobs(jobs: Vec<HardJob>, threads: usize) -> Result<HardCases, Error> {
-    let results = stepladder::parallel::parallel_map(
+    let results = stepladder::internals::parallel::parallel_map(
         &jobs,
         threads,
         |job| {

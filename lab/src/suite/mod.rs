@@ -3,7 +3,7 @@
 //! so the records are the same whatever the thread count.
 
 use stepladder::error::Error;
-use stepladder::study::case::{Case, case};
+use stepladder::internals::case::{Case, case};
 
 pub mod adaptive;
 pub mod hard_cases;
@@ -13,18 +13,18 @@ pub mod work_precision;
 
 use crate::suite::hard_cases::{HardCases, hard_jobs, run_hard_jobs};
 use std::time::{Duration, Instant};
-use stepladder::parallel::parallel_map;
+use stepladder::internals::accuracy::order::{OrderRecord, OrderSpec};
+use stepladder::internals::accuracy::phase::{PhaseRecord, phase_error};
+use stepladder::internals::accuracy::scene_check::{SceneCheck, check_scene};
+use stepladder::internals::accuracy::trajectory::{TrajectoryRecord, earth_sun_experiments};
+use stepladder::internals::geometry::energy::{EnergyRecord, EnergySpec};
+use stepladder::internals::geometry::reverse::{ReverseRecord, ReverseSpec};
+use stepladder::internals::geometry::symplectic::{SymplecticRecord, SymplecticSpec};
+use stepladder::internals::parallel::parallel_map;
+use stepladder::internals::stability::{StabilityRecord, stability};
 use stepladder::scene::{AnyScene, Scene, SceneVisitor};
 use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::order::{OrderRecord, OrderSpec};
-use stepladder::study::accuracy::phase::{PhaseRecord, phase_error};
-use stepladder::study::accuracy::scene_check::{SceneCheck, check_scene};
-use stepladder::study::accuracy::trajectory::{TrajectoryRecord, earth_sun_experiments};
-use stepladder::study::geometry::energy::{EnergyRecord, EnergySpec};
-use stepladder::study::geometry::reverse::{ReverseRecord, ReverseSpec};
-use stepladder::study::geometry::symplectic::{SymplecticRecord, SymplecticSpec};
-use stepladder::study::stability::{StabilityRecord, stability};
 
 /// Every record of one scheme on one scene.
 #[derive(Clone, Debug)]
@@ -71,7 +71,7 @@ pub struct SuiteRecords {
     pub work_timing: Vec<crate::suite::work_precision::WorkTiming>,
     /// Every scheme's cost of a step against the hand-written floor
     /// (machine-dependent).
-    pub speed: stepladder::study::cost::step_time::SpeedRecord,
+    pub speed: stepladder::internals::cost::step_time::SpeedRecord,
     /// The tolerance ladders of the adaptive integrators.
     pub adaptive: crate::suite::adaptive::AdaptiveRecords,
     /// The race of the crate's best against the peers, by force
@@ -253,7 +253,7 @@ fn speed_against_error(
 ) -> (
     Vec<crate::suite::work_precision::WorkRecord>,
     Vec<crate::suite::work_precision::WorkTiming>,
-    stepladder::study::cost::step_time::SpeedRecord,
+    stepladder::internals::cost::step_time::SpeedRecord,
 ) {
     let scenes = AnyScene::all();
     let orders: Vec<Vec<&OrderRecord>> = scenes
@@ -268,9 +268,9 @@ fn speed_against_error(
         })
         .collect();
     let (work, timing) = crate::suite::work_precision::work_study(&scenes, &orders, threads);
-    let speed = stepladder::study::cost::step_time::speed(
-        stepladder::study::cost::step_time::SPEED_STEPS,
-        stepladder::study::cost::step_time::SPEED_REPEATS,
+    let speed = stepladder::internals::cost::step_time::speed(
+        stepladder::internals::cost::step_time::SPEED_STEPS,
+        stepladder::internals::cost::step_time::SPEED_REPEATS,
     );
     (work, timing, speed)
 }

@@ -24,16 +24,16 @@ use crate::peer::{IntegratorVisitor, PEERS, VERNER98};
 use crate::suite::adaptive::{AdaptiveRecords, INTEGRATORS, OWN_PAIRS};
 use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
 use serde::Serialize;
-use stepladder::parallel::parallel_map;
-use stepladder::run::integrate;
+use stepladder::internals::cost::step_time::time_run;
+use stepladder::internals::cost::work_points::{Reach, cheapest, cost_to_reach};
+use stepladder::internals::parallel::parallel_map;
+use stepladder::internals::run::integrate;
 use stepladder::scene::{AnyScene, Counted, OuterSolarSystem, Pleiades, Scene, SceneVisitor};
+use stepladder::scheme::{AdaptiveIntegrator, RunEnd};
 use stepladder::scheme::{
     CompensatedSplitting, KAHAN_LI8, Scheme, SchemeVisitor, scheme_ids, visit_scheme,
 };
 use stepladder::state::State;
-use stepladder::study::adaptive::{AdaptiveIntegrator, RunEnd};
-use stepladder::study::cost::step_time::time_run;
-use stepladder::study::cost::work_points::{Reach, cheapest, cost_to_reach};
 
 /// The Kepler scenes of the race.
 pub const KEPLER_SCENES: [&str; 2] = ["kepler-circular", "kepler-eccentric"];

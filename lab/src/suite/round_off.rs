@@ -4,12 +4,12 @@
 //! stored by job, so the records do not depend on the thread count.
 
 use stepladder::error::Error;
-use stepladder::scene::{AnyScene, Harmonic, KeplerCircular};
-use stepladder::scheme::compensated::{pair_ids, paired_ids};
-use stepladder::study::round_off::floor::{
+use stepladder::internals::compensated::{pair_ids, paired_ids};
+use stepladder::internals::round_off::floor::{
     PairRecord, RoundoffRecord, RoundoffSpec, assemble, study_pair,
 };
-use stepladder::study::round_off::longrun::{LongrunRecord, LongrunSpec, longrun_of};
+use stepladder::internals::round_off::longrun::{LongrunRecord, LongrunSpec, longrun_of};
+use stepladder::scene::{AnyScene, Harmonic, KeplerCircular};
 
 /// Every record of the round-off studies.
 #[derive(Clone, Debug)]
@@ -72,7 +72,7 @@ pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
     for (i, _) in longs.iter().enumerate() {
         jobs.extend(pair_ids().into_iter().map(|id| Job::Long(i, id)));
     }
-    let results = stepladder::parallel::parallel_map(
+    let results = stepladder::internals::parallel::parallel_map(
         &jobs,
         threads,
         |job| match *job {

@@ -1,6 +1,6 @@
 //! The work-precision study over the catalogue and the built-in scenes:
 //! for each scene, every scheme's cost of reaching each target error (from
-//! [`stepladder::study::cost::work_points`]), the peers of other crates beside
+//! [`stepladder::internals::cost::work_points`]), the peers of other crates beside
 //! them ([`crate::peer`]), the cheapest scheme per target, and, apart
 //! from these deterministic records, the wall time it all takes here.
 
@@ -8,16 +8,16 @@ use crate::peer::{IntegratorVisitor, PEERS, PeerId, PeerTimes, PeerWork, peer_wo
 use serde::Serialize;
 use std::time::Duration;
 use stepladder::error::Error;
-use stepladder::parallel::parallel_map;
-use stepladder::scene::{AnyScene, Scene, SceneVisitor};
-use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
-use stepladder::study::accuracy::order::{OrderRecord, OrderSpec};
-use stepladder::study::adaptive::AdaptiveIntegrator;
-use stepladder::study::case::case;
-use stepladder::study::cost::step_time::{SPEED_STEP, time_run};
-use stepladder::study::cost::work_points::{
+use stepladder::internals::accuracy::order::{OrderRecord, OrderSpec};
+use stepladder::internals::case::case;
+use stepladder::internals::cost::step_time::{SPEED_STEP, time_run};
+use stepladder::internals::cost::work_points::{
     ENERGY_PERIODS, Reach, SchemeWork, TARGETS, TargetCost, cheapest, cost_to_reach, scheme_work,
 };
+use stepladder::internals::parallel::parallel_map;
+use stepladder::scene::{AnyScene, Scene, SceneVisitor};
+use stepladder::scheme::AdaptiveIntegrator;
+use stepladder::scheme::{Scheme, SchemeVisitor, scheme_ids, visit_scheme};
 
 /// Steps of one timed run of a scheme on a scene, for its time per force
 /// evaluation.

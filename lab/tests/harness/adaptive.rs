@@ -1,10 +1,10 @@
 //! The tolerance ladders of the suite: the crate's own adaptive pairs
 //! against their controllers' theory, the peers measured alike.
 
+use stepladder::internals::adaptive::AdaptiveClaim;
+use stepladder::internals::geometry::energy::EnergyClass;
+use stepladder::scheme::RunEnd;
 use stepladder::study::Verdict;
-use stepladder::study::adaptive::AdaptiveClaim;
-use stepladder::study::adaptive::RunEnd;
-use stepladder::study::geometry::energy::EnergyClass;
 use stepladder_lab::peer::PeerId;
 use stepladder_lab::suite::adaptive::INTEGRATORS;
 

@@ -6,15 +6,15 @@
 use super::cli::refused;
 use nalgebra::Vector2;
 use stepladder::error::Error;
-use stepladder::ladder::{Ladder, LadderChoice};
-use stepladder::run::{Outcome, integrate};
+use stepladder::internals::accuracy::order::{DropReason, OrderSpec, global_order};
+use stepladder::internals::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::internals::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::internals::geometry::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::internals::ladder::{Ladder, LadderChoice};
+use stepladder::internals::run::{Outcome, integrate};
 use stepladder::scene::{AnyScene, Harmonic, KeplerCircular, KeplerEccentric};
 use stepladder::scheme::{ImplicitMidpoint, VELOCITY_VERLET};
 use stepladder::state::State;
-use stepladder::study::accuracy::order::{DropReason, OrderSpec, global_order};
-use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
-use stepladder::study::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
 
 const BAD_NUMBERS: [f64; 5] = [0.0, -0.1, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
 

@@ -3,13 +3,13 @@
 //! public trait, and each must get a failing verdict with the right
 //! measured order.
 
+use stepladder::internals::accuracy::order::{OrderSpec, global_order};
 use stepladder::scene::{Harmonic, KeplerCircular, KeplerEccentric, Scene};
 use stepladder::scheme::{
     Flow, KAHAN_LI8, Leapfrog, Scheme, SchemeMeta, SplittingTable, StepFailure, VELOCITY_VERLET,
 };
 use stepladder::state::{Real, State};
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::order::{OrderSpec, global_order};
 
 /// Velocity Verlet with the kick weights 0.6 / 0.4 instead of 1/2 / 1/2: still
 /// consistent and symplectic, but no longer symmetric, hence first order.

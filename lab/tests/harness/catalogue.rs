@@ -1,7 +1,7 @@
 //! The catalogue against its own claims, on every built-in scene.
 
+use stepladder::internals::compensated::{any_scheme_ids, paired_ids, variants};
 use stepladder::scene::{Counted, Harmonic, KeplerCircular, Scene};
-use stepladder::scheme::compensated::{any_scheme_ids, paired_ids, variants};
 use stepladder::scheme::{
     Flow, POSITION_VERLET, Scheme, SchemeMeta, SchemeVisitor, TABLES, VELOCITY_VERLET, catalogue,
     scheme_ids, visit_scheme,

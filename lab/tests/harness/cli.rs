@@ -313,7 +313,7 @@ fn work_json_has_targets_schemes_peer_and_timings() {
         .iter()
         .map(|t| t.as_f64().unwrap())
         .collect();
-    assert_eq!(targets, stepladder::study::cost::work_points::TARGETS);
+    assert_eq!(targets, stepladder::internals::cost::work_points::TARGETS);
     let schemes = v["schemes"].as_array().unwrap();
     assert_eq!(schemes.len(), stepladder::scheme::scheme_ids().len());
     let kinds = ["interpolated", "at-most", "not-reached"];

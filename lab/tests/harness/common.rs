@@ -1,7 +1,7 @@
 //! What several test modules share.
 
 use std::sync::OnceLock;
-use stepladder::parallel::default_threads;
+use stepladder::internals::parallel::default_threads;
 use stepladder_lab::suite::{SuiteRecords, run_suite};
 
 /// Every study on every scheme and scene, run once for the whole binary.

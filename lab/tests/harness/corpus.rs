@@ -7,13 +7,13 @@
 //! measured number.
 
 use crate::common::{settings, suite};
+use stepladder::internals::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use stepladder::internals::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::internals::geometry::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::internals::wording::comparisons;
 use stepladder::scene::{Anharmonic, AnyScene, Harmonic, Hidden, KeplerEccentric, Scene};
 use stepladder::scheme::{KAHAN_LI8, PEFRL, Rk4, Scheme, YOSHIDA6};
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::order::{OrderRecord, OrderSpec, global_order};
-use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
-use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
-use stepladder::wording::comparisons;
 use stepladder_lab::corpus::broken::{FOREST_RUTH_4_DECIMALS, YOSHIDA6_FIRST_WEIGHT};
 use stepladder_lab::corpus::correct::{KUTTA3, RUTH3, TRAPEZOIDAL};
 use stepladder_lab::corpus::scenes::{FigureEight, HenonHeiles, Pendulum};
@@ -101,7 +101,7 @@ fn the_verdict_corpus_gets_every_verdict_right() {
 /// (`E0`, `f32`, `toda-3`, `h^2` are left alone); a minus sign belongs to
 /// it after a space or an opening bracket.
 fn two_digits(text: &str) -> String {
-    use stepladder::wording::{pair_from, significant};
+    use stepladder::internals::wording::{pair_from, significant};
     let chars: Vec<char> = text.chars().collect();
     // (start, end, value, significant digits) of every number
     let mut numbers: Vec<(usize, usize, f64, usize)> = Vec::new();
@@ -349,7 +349,7 @@ fn high_orders_pass_on_scenes_without_an_exact_solution() {
 fn high_orders_pass_near_the_separatrix_of_the_built_in_well() {
     let well = AnyScene::parse("anharmonic:x0=0.95").expect("a valid scene");
     for id in ["euler", "rk4", "kahan-li8"] {
-        let case = stepladder::study::case::case(id, &well).expect("catalogue id");
+        let case = stepladder::internals::case::case(id, &well).expect("catalogue id");
         let r = case.order(&OrderSpec::default()).expect("valid defaults");
         assert_passes(&r);
         let hidden = case

@@ -1,6 +1,6 @@
 //! The figures and the Earth-Sun experiments behind them.
 
-use stepladder::study::accuracy::trajectory::earth_sun_experiments;
+use stepladder::internals::accuracy::trajectory::earth_sun_experiments;
 use stepladder_lab::report::figures::{mermaid_bars, mermaid_lines, write_figures};
 
 /// Euler on the circular orbit gains `h^2 |a|^2 / 2 = h^2 w^4 r^2 / 2` of

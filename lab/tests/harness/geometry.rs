@@ -3,18 +3,18 @@
 //! that lie about themselves.
 
 use nalgebra::{SVector, Vector1};
-use stepladder::maths::tangent::step_jacobian;
-use stepladder::run::integrate;
+use stepladder::internals::accuracy::scene_check::check_scene;
+use stepladder::internals::geometry::energy::{EnergyClass, EnergySpec, energy_drift};
+use stepladder::internals::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::internals::geometry::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::internals::maths::tangent::step_jacobian;
+use stepladder::internals::run::integrate;
 use stepladder::scene::{Harmonic, KeplerCircular, Scene, SceneMeta};
 use stepladder::scheme::{
     EULER_CROMER, Euler, Flow, Rk4, SchemeMeta, SplittingTable, VELOCITY_VERLET,
 };
 use stepladder::state::{Real, State};
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::scene_check::check_scene;
-use stepladder::study::geometry::energy::{EnergyClass, EnergySpec, energy_drift};
-use stepladder::study::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
 
 #[test]
 fn every_geometric_claim_of_the_catalogue_is_confirmed() {
@@ -263,7 +263,7 @@ fn every_built_in_scene_passes_its_check() {
 
 struct Check;
 impl stepladder::scene::SceneVisitor for Check {
-    type Output = stepladder::study::accuracy::scene_check::SceneCheck;
+    type Output = stepladder::internals::accuracy::scene_check::SceneCheck;
     fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
         self,
         s: &S,

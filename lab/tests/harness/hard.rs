@@ -5,17 +5,19 @@
 
 use super::cli::{json, refused};
 use super::common::settings;
+use stepladder::internals::accuracy::order::DropReason;
+use stepladder::internals::hard::eccentric::{
+    ECCENTRICITIES, ORDER_SCHEMES, OrbitEnergy, OrderStatus, Pericentre, eccentric_order,
+};
+use stepladder::internals::hard::escape::{
+    EscapeSpec, Misclassified, classify_at, escape_or_trapped,
+};
+use stepladder::internals::hard::following::{Event, WellSpec, following, line_fit};
+use stepladder::internals::tolerance::{ERROR_CEILING, SEPARATRIX_SLOPE_TOLERANCE};
 use stepladder::scene::{Anharmonic, KeplerEccentric, Scene, Separatrix};
 use stepladder::scheme::{
     POSITION_VERLET, Scheme, SchemeVisitor, VELOCITY_VERLET, catalogue, visit_scheme,
 };
-use stepladder::study::accuracy::order::DropReason;
-use stepladder::study::hard::eccentric::{
-    ECCENTRICITIES, ORDER_SCHEMES, OrbitEnergy, OrderStatus, Pericentre, eccentric_order,
-};
-use stepladder::study::hard::escape::{EscapeSpec, Misclassified, classify_at, escape_or_trapped};
-use stepladder::study::hard::following::{Event, WellSpec, following, line_fit};
-use stepladder::tolerance::{ERROR_CEILING, SEPARATRIX_SLOPE_TOLERANCE};
 use stepladder_lab::suite::hard_cases::HardCases;
 
 fn hard() -> &'static HardCases {
@@ -349,8 +351,8 @@ fn an_unresolved_pericentre_is_reported_as_such() {
         assert!(r.reason.starts_with("unresolved"), "{}", r.reason);
         assert!(r.measured_order.is_none());
         let vw = r.pericentre.speed_in_phase_units;
-        let ceiling =
-            stepladder::tolerance::ERROR_CEILING * KeplerEccentric::new(0.99).unwrap().scale();
+        let ceiling = stepladder::internals::tolerance::ERROR_CEILING
+            * KeplerEccentric::new(0.99).unwrap().scale();
         for g in r
             .rungs
             .iter()
@@ -565,9 +567,9 @@ fn hard_case_commands_answer_in_json_and_refuse_bad_input_in_one_line() {
 /// that step, the largest error falls at first order.
 #[test]
 fn euler_cromer_turns_first_order_below_the_predicted_step() {
-    use stepladder::run::integrate;
+    use stepladder::internals::hard::eccentric::kick_lag;
+    use stepladder::internals::run::integrate;
     use stepladder::scheme::EULER_CROMER;
-    use stepladder::study::hard::eccentric::kick_lag;
     let r = hard()
         .orders
         .iter()

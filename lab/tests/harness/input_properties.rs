@@ -8,16 +8,16 @@
 use super::cli::run;
 use proptest::prelude::*;
 use stepladder::error::Error;
-use stepladder::ladder::{AutoLadder, Ladder, LadderChoice};
+use stepladder::internals::accuracy::order::{OrderSpec, global_order};
+use stepladder::internals::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::internals::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::internals::geometry::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::internals::hard::escape::EscapeSpec;
+use stepladder::internals::ladder::{AutoLadder, Ladder, LadderChoice};
+use stepladder::internals::round_off::floor::{RoundoffSpec, roundoff};
+use stepladder::internals::wording::exact;
 use stepladder::scene::{Anharmonic, Harmonic, KeplerEccentric, Separatrix};
 use stepladder::scheme::{Euler, VELOCITY_VERLET};
-use stepladder::study::accuracy::order::{OrderSpec, global_order};
-use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
-use stepladder::study::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::study::geometry::symplectic::{SymplecticSpec, symplecticity};
-use stepladder::study::hard::escape::EscapeSpec;
-use stepladder::study::round_off::floor::{RoundoffSpec, roundoff};
-use stepladder::wording::exact;
 
 /// Cases per property: few, since each is refused before any run.
 const CASES: u32 = 32;
@@ -237,7 +237,7 @@ fn huge_steps_and_runs_print_true_figures() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     // 1e300 over the automatic ladder's first step, 2 pi / 8
     let n = 1e300 / (std::f64::consts::TAU / 8.0);
-    let printed = stepladder::wording::figure(n);
+    let printed = stepladder::internals::wording::figure(n);
     assert!(
         err.contains(&format!("refusing a run of {printed} steps")),
         "{err}"
@@ -257,8 +257,8 @@ fn velocity_verlet(q: &mut [f64], v: &mut [f64], h: f64, force: &stepladder::sch
 /// runs, and nothing is written, in the pin folder or two above it.
 #[test]
 fn an_id_that_is_a_path_writes_no_pin() {
+    use stepladder::internals::accuracy::pin::check_pin_with;
     use stepladder::scheme::{BlackBox, SchemeMeta};
-    use stepladder::study::accuracy::pin::check_pin_with;
     let root = std::env::temp_dir().join(format!("stepladder-escape-{}", std::process::id()));
     let pins = root.join("a/b/snapshots/stepladder");
     std::fs::create_dir_all(&pins).unwrap();

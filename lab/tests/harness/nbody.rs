@@ -7,15 +7,15 @@
 //! scene (masses, units, mass-weighting, the published tables) and the
 //! harness's estimate of the error it never sees.
 
+use stepladder::internals::accuracy::order::{OrderRecord, OrderSpec, global_order};
+use stepladder::internals::accuracy::scene_check::check_scene;
+use stepladder::internals::run::integrate;
+use stepladder::internals::tolerance::SCENE_TOLERANCE;
 use stepladder::nalgebra::SVector;
-use stepladder::run::integrate;
 use stepladder::scene::{Invariant, OuterSolarSystem, Pleiades, Scene, SceneMeta};
 use stepladder::scheme::{CompensatedSplitting, KAHAN_LI8, Rk4, Scheme, VELOCITY_VERLET, YOSHIDA6};
 use stepladder::state::{Real, State};
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::order::{OrderRecord, OrderSpec, global_order};
-use stepladder::study::accuracy::scene_check::check_scene;
-use stepladder::tolerance::SCENE_TOLERANCE;
 use stepladder_lab::suite::race::{
     RACE_TARGETS, pleiades_published_accuracy, pleiades_quadruple_precision,
 };

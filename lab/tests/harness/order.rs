@@ -1,11 +1,11 @@
 //! The order measurement itself: it must not be fooled by special end times
 //! or ladders, and it must use the steps actually run.
 
-use stepladder::ladder::{Ladder, LadderChoice};
-use stepladder::run::integrate;
+use stepladder::internals::accuracy::order::{OrderSpec, global_order};
+use stepladder::internals::ladder::{Ladder, LadderChoice};
+use stepladder::internals::run::integrate;
 use stepladder::scene::{Harmonic, Scene};
 use stepladder::scheme::{EULER_CROMER, VELOCITY_VERLET};
-use stepladder::study::accuracy::order::{OrderSpec, global_order};
 
 /// Euler-Cromer's positions are leap-frog's started with a velocity off by
 /// `h a0 / 2`; that O(h) error is `sin(w t)`-shaped and vanishes at every
@@ -104,8 +104,8 @@ impl Scene<1> for Unsolved {
 
 #[test]
 fn without_an_exact_solution_successive_rungs_give_the_same_order() {
+    use stepladder::internals::accuracy::order::Reference;
     use stepladder::scheme::{Euler, Rk4};
-    use stepladder::study::accuracy::order::Reference;
     let hidden = Unsolved(Harmonic::new(1.3, 0.4, 0.9).unwrap());
     for (order, record) in [
         (
@@ -177,7 +177,7 @@ fn an_exact_scheme_stops_at_the_floor_without_a_verdict() {
     let r = global_order(&ExactRotation, &Harmonic::default(), &OrderSpec::default()).unwrap();
     assert_eq!(
         r.ladder_end,
-        stepladder::ladder::LadderEnd::Floor,
+        stepladder::internals::ladder::LadderEnd::Floor,
         "{}",
         r.reason
     );

@@ -1,5 +1,5 @@
 //! The catalogue pins its own errors, as a downstream crate does (see
-//! `stepladder::study::accuracy::pin`): one file per scheme and built-in
+//! `stepladder::internals::accuracy::pin`): one file per scheme and built-in
 //! scene in `snapshots/pins/`, committed. A refactor that moves a scheme's
 //! error at the pinned step by more than the round-off the order study
 //! measured there fails here, whatever it does to the order.
@@ -10,9 +10,15 @@
 //! order, and the same run under another platform's rounding, pass.
 
 use std::path::{Path, PathBuf};
+use stepladder::internals::accuracy::order::{OrderSpec, global_order};
+use stepladder::internals::accuracy::pin::{
+    Pin, PinOutcome, check_pin_with, pin_path, pinned_error,
+};
+use stepladder::internals::case::case;
+use stepladder::internals::parallel::{default_threads, parallel_map};
+use stepladder::internals::run::integrate;
+use stepladder::internals::tolerance::TWIN_SCALE;
 use stepladder::nalgebra::SVector;
-use stepladder::parallel::{default_threads, parallel_map};
-use stepladder::run::integrate;
 use stepladder::scene::{
     AnyScene, Harmonic, KeplerCircular, KeplerEccentric, Scaled, Scene, SceneMeta,
 };
@@ -21,10 +27,6 @@ use stepladder::scheme::{
     VerletComposition, YOSHIDA6,
 };
 use stepladder::state::{Real, State};
-use stepladder::study::accuracy::order::{OrderSpec, global_order};
-use stepladder::study::accuracy::pin::{Pin, PinOutcome, check_pin_with, pin_path, pinned_error};
-use stepladder::study::case::case;
-use stepladder::tolerance::TWIN_SCALE;
 
 #[test]
 fn the_catalogue_keeps_its_pinned_errors() {
@@ -397,7 +399,7 @@ impl<S: Scene<D> + Copy, const D: usize> Scene<D> for OtherUnits<S> {
 #[derive(Clone, Copy)]
 struct OtherLibm<S>(S);
 
-const LIBM_ULPS: f64 = stepladder::tolerance::EXACT_SOLUTION_ULPS / 2.0;
+const LIBM_ULPS: f64 = stepladder::internals::tolerance::EXACT_SOLUTION_ULPS / 2.0;
 
 impl<S: Scene<D>, const D: usize> Scene<D> for OtherLibm<S> {
     fn meta(&self) -> SceneMeta {

@@ -2,17 +2,17 @@
 //! law they are given, and a correct scheme passes on any oscillator.
 
 use proptest::prelude::*;
-use stepladder::ladder::AUTO_MAX_RUNG_EVALUATIONS;
-use stepladder::ladder::per_octave;
-use stepladder::maths::tangent::step_jacobian;
-use stepladder::run::integrate;
+use stepladder::internals::accuracy::order::{OrderSpec, RungData, analyse, global_order};
+use stepladder::internals::geometry::reverse::{ReverseSpec, reversibility};
+use stepladder::internals::ladder::AUTO_MAX_RUNG_EVALUATIONS;
+use stepladder::internals::ladder::per_octave;
+use stepladder::internals::maths::tangent::step_jacobian;
+use stepladder::internals::run::integrate;
+use stepladder::internals::tolerance::{MIN_WINDOW_HALVINGS, clean_fraction, order_verdict};
 use stepladder::scene::Harmonic;
 use stepladder::scene::Scene;
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
 use stepladder::state::State;
-use stepladder::study::accuracy::order::{OrderSpec, RungData, analyse, global_order};
-use stepladder::study::geometry::reverse::{ReverseSpec, reversibility};
-use stepladder::tolerance::{MIN_WINDOW_HALVINGS, clean_fraction, order_verdict};
 
 /// Cases per property: 64, or `PROPTEST_CASES` when set (to search harder).
 fn cases() -> u32 {
@@ -193,7 +193,7 @@ struct ClosedForm {
 impl SchemeVisitor for &ClosedForm {
     type Output = Result<(), String>;
     fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Self::Output {
-        use stepladder::study::accuracy::phase::one_step_matrix;
+        use stepladder::internals::accuracy::phase::one_step_matrix;
         let id = scheme.meta().id;
         // the matrix of x'' = -x at step z; on w0 the same map in units of 1/w0
         let m = one_step_matrix(scheme, self.z).ok_or(format!("{id}: no step"))?;
@@ -279,14 +279,16 @@ proptest! {
 //   statement is too narrow.
 // ---------------------------------------------------------------------------
 
+use stepladder::internals::accuracy::order::OrderRecord;
+use stepladder::internals::case::case;
+use stepladder::internals::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
+use stepladder::internals::geometry::reverse::ReverseRecord;
+use stepladder::internals::geometry::symplectic::{
+    SymplecticRecord, SymplecticSpec, symplecticity,
+};
+use stepladder::internals::tolerance::ORDER_RESOLUTION;
 use stepladder::scene::{Anharmonic, AnyScene, KeplerCircular, KeplerEccentric, Scaled};
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::order::OrderRecord;
-use stepladder::study::case::case;
-use stepladder::study::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
-use stepladder::study::geometry::reverse::ReverseRecord;
-use stepladder::study::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
-use stepladder::tolerance::ORDER_RESOLUTION;
 
 /// The four verdicts of one scheme on one scene, with their records.
 #[derive(Clone, Debug)]
@@ -664,11 +666,14 @@ fn orders_two_resolutions_apart_are_not_the_same() {
     )
     .unwrap();
     let p0 = base.measured_order.unwrap();
-    base.ci95 = Some(stepladder::tolerance::order_interval(p0, [p0, p0]));
+    base.ci95 = Some(stepladder::internals::tolerance::order_interval(
+        p0,
+        [p0, p0],
+    ));
     let mut moved = base.clone();
     let p = p0 + 2.0 * ORDER_RESOLUTION;
     moved.measured_order = Some(p);
-    moved.ci95 = Some(stepladder::tolerance::order_interval(p, [p, p]));
+    moved.ci95 = Some(stepladder::internals::tolerance::order_interval(p, [p, p]));
     assert!(same_order(&base, &moved).is_err());
     let mut refuted = base.clone();
     refuted.verdict = Verdict::Fail;

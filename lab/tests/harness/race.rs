@@ -2,11 +2,11 @@
 //! the N-body references it is judged against, and the search rules that
 //! keep it cheap.
 
+use stepladder::internals::cost::work_points::Reach;
 use stepladder::scene::{OuterSolarSystem, Pleiades, Scene};
+use stepladder::scheme::AdaptiveIntegrator;
 use stepladder::scheme::{CompensatedSplitting, KAHAN_LI8};
 use stepladder::state::State;
-use stepladder::study::adaptive::AdaptiveIntegrator;
-use stepladder::study::cost::work_points::Reach;
 use stepladder_lab::peer::{PEERS, VERNER98};
 use stepladder_lab::suite::race::{
     KEPLER_SCENES, NBODY_FIRST_STEPS, NBODY_MAX_EVALUATIONS, NBODY_SCENES, NBODY_TOLERANCES,
@@ -107,7 +107,7 @@ fn the_outer_solar_system_reference_is_two_independent_methods_agreeing() {
     assert_eq!(reference.t_end, planets.default_t_end());
     let end = |steps: u64| {
         let mut last = planets.initial();
-        let outcome = stepladder::run::integrate(
+        let outcome = stepladder::internals::run::integrate(
             &COMPOSITION,
             &planets,
             &planets.initial(),

@@ -4,14 +4,14 @@
 
 use super::cli::{json, refused, run};
 use stepladder::guard::assert_claims;
-use stepladder::scene::{Harmonic, KeplerCircular, Scene};
-use stepladder::scheme::compensated::{PairVisitor, paired_ids, visit_pair};
-use stepladder::scheme::{Scheme, StormerVerlet, StormerVerletCompensated};
-use stepladder::study::round_off::floor::{PairRecord, RoundoffRecord};
-use stepladder::tolerance::{
+use stepladder::internals::compensated::{PairVisitor, paired_ids, visit_pair};
+use stepladder::internals::round_off::floor::{PairRecord, RoundoffRecord};
+use stepladder::internals::tolerance::{
     COMPENSATED_LONGRUN_GAIN, RANDOM_WALK_EXPONENT_TOLERANCE, ROUND_OFF_EXPONENT_TOLERANCE,
     TWO_STEP_FLOOR_RATIO, reverse_tolerance_ulps,
 };
+use stepladder::scene::{Harmonic, KeplerCircular, Scene};
+use stepladder::scheme::{Scheme, StormerVerlet, StormerVerletCompensated};
 
 /// Every claim of a compensated variant, on the oscillator and the orbit:
 /// order, energy, symplecticity, time symmetry (the public guards, which

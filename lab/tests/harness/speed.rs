@@ -3,14 +3,14 @@
 //! of the cheapest scheme, and the peer measured like the catalogue. No
 //! assertion here depends on how fast the machine is.
 
-use stepladder::run::integrate;
-use stepladder::scene::{AnyScene, Counted, Harmonic, KeplerCircular, Scene, SceneVisitor};
-use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
-use stepladder::study::adaptive::{AdaptiveIntegrator, RunEnd};
-use stepladder::study::cost::step_time::{floor_verlet_kepler, run_steps, speed, time_run};
-use stepladder::study::cost::work_points::{
+use stepladder::internals::cost::step_time::{floor_verlet_kepler, run_steps, speed, time_run};
+use stepladder::internals::cost::work_points::{
     Reach, TARGETS, TargetCost, WorkPoint, cheapest, cost_to_reach, start_evaluations,
 };
+use stepladder::internals::run::integrate;
+use stepladder::scene::{AnyScene, Counted, Harmonic, KeplerCircular, Scene, SceneVisitor};
+use stepladder::scheme::{AdaptiveIntegrator, RunEnd};
+use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
 use stepladder_lab::peer::{
     DOP853, NumerisVerner98, OdeSolversDop853, PEERS, PeerId, peer_targets, run_first_order,
 };

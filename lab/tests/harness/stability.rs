@@ -1,13 +1,13 @@
 //! Linear stability against its analytic values, and runs above the limit
 //! that must end early with a clear verdict.
 
-use stepladder::run::Outcome;
+use stepladder::internals::accuracy::phase::one_step_matrix;
+use stepladder::internals::geometry::energy::{EnergySpec, energy_drift};
+use stepladder::internals::run::Outcome;
+use stepladder::internals::stability::{StabilityRecord, spectral_radius, stability};
+use stepladder::internals::verdict::Verdict;
 use stepladder::scene::Harmonic;
 use stepladder::scheme::{Scheme, SchemeVisitor, VELOCITY_VERLET, scheme_ids, visit_scheme};
-use stepladder::study::accuracy::phase::one_step_matrix;
-use stepladder::study::geometry::energy::{EnergySpec, energy_drift};
-use stepladder::study::stability::{StabilityRecord, spectral_radius, stability};
-use stepladder::study::verdict::Verdict;
 
 struct Stability;
 impl SchemeVisitor for Stability {
@@ -143,11 +143,13 @@ fn a_stiff_oscillator_above_the_limit_ends_early_with_a_clear_verdict() {
 // ---------------------------------------------------------------------------
 // Maps unstable at every step: the growth law against independent values.
 
-use stepladder::scheme::{BlackBox, DPRKN6, FOREST_RUTH, Force, QUINLAN_TREMAINE8, SchemeMeta};
-use stepladder::study::stability::{
+use stepladder::internals::stability::{
     GrowthLaw, GrowthSource, determinant_round_off, growth_law, per_period,
 };
-use stepladder::tolerance::{GROWTH_POWER_TOLERANCE, GROWTH_VALUE_RESOLUTION, STABILITY_BISECTION};
+use stepladder::internals::tolerance::{
+    GROWTH_POWER_TOLERANCE, GROWTH_VALUE_RESOLUTION, STABILITY_BISECTION,
+};
+use stepladder::scheme::{BlackBox, DPRKN6, FOREST_RUTH, Force, QUINLAN_TREMAINE8, SchemeMeta};
 
 /// DPRKN6's `det M - 1 = d4 z^8 + d5 z^10` and its growth, exactly: the
 /// output of `python3 tests/check_dprkn6_stability.py`, which solves the

@@ -4,7 +4,7 @@
 //! # What a rung measures
 //!
 //! Each rung runs the scheme over `[0, t_end]` in `N` steps and compares its
-//! states at up to [`COMPARISONS`] step times (every step while `N` is
+//! states at up to [`COMPARISONS`](crate::run::COMPARISONS) step times (every step while `N` is
 //! smaller) with a reference: the scene's exact solution where it has one,
 //! otherwise the same scheme at half the step, whose states at those times
 //! lie on its own grid. The largest phase-space distance is the rung's error.
@@ -48,7 +48,7 @@
 use crate::error::Error;
 use crate::ladder::{AUTO_START, AutoLadder, LadderChoice, LadderEnd, per_octave, steps_for};
 use crate::maths::fit::OrderFit;
-use crate::run::{Outcome, integrate, integrate_tallied};
+use crate::run::{Outcome, comparison_steps, integrate, integrate_tallied};
 use crate::scene::{Invariant, InvariantValue, Scaled, Scene};
 use crate::scheme::{Scheme, SolveTally};
 use crate::state::State;
@@ -196,44 +196,6 @@ impl OrderRecord {
     pub fn passed(&self) -> bool {
         self.verdict == Verdict::Pass
     }
-}
-
-/// Most step times a rung is compared at: every step up to this many steps,
-/// else this many equally spaced ones (and `t_end`). The largest distance
-/// over them follows the error's law exactly as the largest over every step
-/// does, and 4096 times over 2 sqrt(2) periods resolve an error that varies
-/// along the orbit to well within a percent.
-pub const COMPARISONS: u64 = 4096;
-
-/// The step numbers at which a rung of `steps` steps is compared.
-pub(crate) fn comparison_steps(steps: u64) -> impl Iterator<Item = u64> {
-    let count = steps.min(COMPARISONS);
-    (0..=count).map(move |j| j * steps / count)
-}
-
-/// The error of one rung measured as the order study measures it against
-/// an exact solution: the largest phase-space distance to it at the
-/// comparison steps of `steps` steps over `t_end`. `None` when the scene has
-/// no exact solution or the run does not complete.
-pub fn exact_rung_error<M: Scheme, S: Scene<D>, const D: usize>(
-    scheme: &M,
-    scene: &S,
-    t_end: f64,
-    steps: u64,
-) -> Option<f64> {
-    scene.exact(0.0)?;
-    let h = t_end / steps as f64;
-    let mut at = comparison_steps(steps).peekable();
-    let mut worst = 0.0f64;
-    let outcome = integrate(scheme, scene, &scene.initial(), h, steps, |n, _, s| {
-        if at.next_if_eq(&n).is_some() {
-            let t = if n == steps { t_end } else { n as f64 * h };
-            if let Some(exact) = scene.exact(t) {
-                worst = worst.max(scene.phase_distance(s, &exact));
-            }
-        }
-    });
-    outcome.completed().then_some(worst)
 }
 
 /// Measures the global order of `scheme` on `scene`.

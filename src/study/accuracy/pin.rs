@@ -133,12 +133,12 @@
 
 use crate::error::Error;
 use crate::run::integrate;
+use crate::run::{comparison_steps, exact_rung_error};
 use crate::scene::Scene;
 use crate::scheme::Scheme;
 use crate::state::State;
 use crate::study::accuracy::order::{
-    DropReason, OrderRecord, OrderSpec, Reference, RoundOffModel, comparison_steps,
-    exact_rung_error, global_order,
+    DropReason, OrderRecord, OrderSpec, Reference, RoundOffModel, global_order,
 };
 use crate::study::verdict::Verdict;
 use crate::tolerance::{ERROR_CEILING, EXACT_SOLUTION_ULPS};

@@ -1,12 +1,12 @@
 //! The verdicts of the tolerance ladder: each claim of an adaptive
 //! integrator judged against the figures the ladder measured.
 
-use super::integrator::{AdaptiveClaims, RunEnd};
 use super::record::{
     AdaptiveClaim, EnergyGrowth, JudgedClaim, MIN_FIT_POINTS, Proportionality, RoundTrip,
     TolerancePoint,
 };
 use crate::maths::fit::power_law;
+use crate::scheme::{AdaptiveClaims, RunEnd};
 use crate::study::geometry::energy::EnergyClass;
 use crate::study::verdict::Verdict;
 

@@ -65,7 +65,6 @@
 //! refutes a claim the pair does not make: a verdict fails only when a
 //! claim of conservation or symmetry is contradicted.
 
-use super::integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
 use super::judge::{
     bookkeeping, cost_growth, error_factor, judge_energy, judge_exponent, judge_round_trip,
 };
@@ -77,6 +76,7 @@ use crate::error::Error;
 use crate::maths::fit::{OrderFit, order_fit_with_round_off, power_law};
 use crate::run::caught;
 use crate::scene::Scene;
+use crate::scheme::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
 use crate::state::State;
 use crate::study::geometry::energy::{EnergyClass, classify_growth, energy_norm};
 use crate::study::verdict::Verdict;
@@ -106,13 +106,6 @@ pub const ROUND_OFF_SHARE: f64 = 0.01;
 
 /// Energy samples per decade of time in the long run.
 const SAMPLES_PER_DECADE: f64 = 10.0;
-
-/// The exponent `k` of `e ~ TOL^k` for an error-per-step controller whose
-/// estimate behaves like `h^estimate_power`, advancing with an order-`order`
-/// solution: `k = order / estimate_power` (see the module documentation).
-pub fn proportionality_exponent(order: u32, estimate_power: u32) -> f64 {
-    order as f64 / estimate_power.max(1) as f64
-}
 
 /// What to run.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -551,9 +544,9 @@ fn round_trip<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
 mod tests {
     use super::*;
     use crate::scene::{KeplerCircular, KeplerEccentric};
+    use crate::scheme::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
     use crate::scheme::{DPRKN6, DPRKN8, NystromTable};
     use crate::study::adaptive::record::AdaptiveClaim;
-    use crate::study::adaptive::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
 
     /// DPRKN6 with the embedded velocity weights of the conjugate pair
     /// `(84119543 +- 366727 r)/256014135` swapped: `sum b_hat c` gains
@@ -723,12 +716,6 @@ mod tests {
             ..spec()
         };
         assert!(tolerance_ladder(&DPRKN6_ADAPTIVE, &KeplerCircular, &s).is_err());
-    }
-
-    #[test]
-    fn the_exponent_follows_the_powers() {
-        assert_eq!(proportionality_exponent(6, 5), 1.2);
-        assert_eq!(proportionality_exponent(8, 8), 1.0);
     }
 
     /// A ladder whose error is `c TOL^k` at TOL = 1e-3 .. 1e-12, every

@@ -26,11 +26,11 @@
 //! would be reported as a change (a chance of about `N` times `1e-16` for a
 //! run of `N` steps).
 
-use super::integrator::{AdaptiveIntegrator, RunEnd};
 use super::ladder::point;
 use super::record::ToleranceLadderRecord;
 use crate::error::Error;
 use crate::scene::{Scaled, Scene};
+use crate::scheme::{AdaptiveIntegrator, RunEnd};
 use crate::study::accuracy::pin::{missing_under_ci, pin_fields, printed, write_pin};
 use crate::tolerance::TWIN_SCALE;
 use crate::wording::figure;
@@ -299,7 +299,8 @@ fn new_pin<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
 mod tests {
     use super::*;
     use crate::scene::KeplerCircular;
-    use crate::study::adaptive::{DPRKN6_ADAPTIVE, ToleranceLadderSpec, tolerance_ladder};
+    use crate::scheme::DPRKN6_ADAPTIVE;
+    use crate::study::adaptive::{ToleranceLadderSpec, tolerance_ladder};
 
     /// A name becomes a file stem of plain kebab-case, never a path.
     #[test]

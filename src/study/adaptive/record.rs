@@ -2,8 +2,8 @@
 //! exponent, the energy and round-trip runs, and each claim's verdict; the
 //! ladder fills it and the verdicts read it, so it sits below both.
 
-use super::integrator::{AdaptiveClaims, RunEnd};
 use crate::maths::fit::{MIN_POINTS, OrderFit, PowerLaw};
+use crate::scheme::{AdaptiveClaims, RunEnd};
 use crate::study::cost::work_points::{TargetCost, targets_of};
 use crate::study::geometry::energy::EnergyClass;
 use crate::study::verdict::Verdict;

@@ -261,7 +261,7 @@ fn exact_point<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     steps: u64,
 ) -> Option<WorkPoint> {
     scene.exact(0.0)?;
-    let error = crate::study::accuracy::order::exact_rung_error(scheme, scene, t_end, steps);
+    let error = crate::run::exact_rung_error(scheme, scene, t_end, steps);
     let h = t_end / steps as f64;
     let evaluations = if scheme.meta().implicit {
         let counted = Counted::new(scene.clone());

@@ -125,8 +125,7 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
     let first_h = h;
     let (there, back, outcome, leg) = loop {
         let (there, back, outcome, leg) = round_trip(scheme, scene, &start, h, steps);
-        if outcome.completed() || outcome.panicked() || !meta.symmetric || halvings == MAX_HALVINGS
-        {
+        if outcome.completed() || outcome.defect() || !meta.symmetric || halvings == MAX_HALVINGS {
             break (there, back, outcome, leg);
         }
         h /= 2.0;
@@ -138,7 +137,7 @@ pub fn reversibility<M: Scheme, S: Scene<D>, const D: usize>(
     // coarser ones too, from the original step.
     let stopped = (!outcome.completed()).then(|| {
         // the trip at the step asked for, whose stop the probe explains
-        let (first_stop, (leg_start, leg_h)) = if halvings > 0 && !outcome.panicked() {
+        let (first_stop, (leg_start, leg_h)) = if halvings > 0 && !outcome.defect() {
             let (_, _, stop, leg) = round_trip(scheme, scene, &start, first_h, steps);
             (stop, leg)
         } else {

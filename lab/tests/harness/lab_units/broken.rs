@@ -282,7 +282,7 @@ fn the_sign_flip_converges_to_the_wrong_orbit() {
         .map(|&n| {
             let mut last = scene.initial();
             let h = t_end / n as f64;
-            stepladder::run::integrate(
+            stepladder::internals::run::integrate(
                 &VERLET_SIGN_FLIPPED,
                 &scene,
                 &scene.initial(),

@@ -7,7 +7,7 @@ use stepladder::state::State;
 
 use nalgebra::{Matrix2, Vector1};
 use stepladder::conditions;
-use stepladder::run::integrate;
+use stepladder::internals::run::integrate;
 use stepladder::scene::{Anharmonic, Harmonic};
 use stepladder::scheme::NystromTable;
 use stepladder_lab::corpus::correct::*;
@@ -300,7 +300,7 @@ pub(crate) fn det_defect<M: Scheme>(scheme: &M, h: f64) -> f64 {
     let scene = Anharmonic::default();
     let s = State::new(Vector1::new(0.45), Vector1::new(0.2));
     let differences = step_jacobian(scheme, &scene, &s, h).determinant();
-    let dual = stepladder::maths::tangent::step_jacobian(scheme, &scene, &s, h)
+    let dual = stepladder::internals::maths::tangent::step_jacobian(scheme, &scene, &s, h)
         .expect("step")
         .determinant();
     assert!(

@@ -2,13 +2,13 @@ use nalgebra::SVector;
 use nalgebra::{DMatrix, SMatrix, SymmetricEigen};
 use std::f64::consts::TAU;
 use stepladder::conditions;
-use stepladder::run::integrate;
+use stepladder::internals::accuracy::scene_check::check_scene;
+use stepladder::internals::run::integrate;
 use stepladder::scene::Harmonic;
 use stepladder::scene::Scene;
 use stepladder::scheme::{Flow, NystromTable, Scheme};
 use stepladder::state::State;
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::scene_check::check_scene;
 use stepladder_lab::corpus::held_out::*;
 
 // ------------------------------------------------------------------ scenes

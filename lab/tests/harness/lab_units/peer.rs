@@ -1,7 +1,7 @@
 //! The peers' adapters: counting, refusals, accuracy.
 
 use stepladder::scene::{KeplerEccentric, OuterSolarSystem, Pleiades};
-use stepladder::study::adaptive::integrator::{AdaptiveIntegrator, AdaptiveRun, RunEnd};
+use stepladder::scheme::{AdaptiveIntegrator, AdaptiveRun, RunEnd};
 use stepladder_lab::peer::*;
 
 /// Every peer: the evaluations its system function saw are the ones its

@@ -1,8 +1,8 @@
-use stepladder::run::integrate;
+use stepladder::internals::accuracy::scene_check::check_scene;
+use stepladder::internals::run::integrate;
 use stepladder::scene::Scene;
 use stepladder::scheme::{KAHAN_LI8, VELOCITY_VERLET};
 use stepladder::study::Verdict;
-use stepladder::study::accuracy::scene_check::check_scene;
 use stepladder_lab::corpus::scenes::*;
 
 #[test]

@@ -37,13 +37,15 @@
 //! embedded weights (whose power is then not `q+1`), claims an exponent
 //! the tolerance ladder refutes (see the tests).
 
-use super::integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request};
-use super::ladder::proportionality_exponent;
+use super::adaptive::{
+    AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request,
+    proportionality_exponent,
+};
 use crate::error::Error;
+use crate::run::exact_rung_error;
 use crate::scene::Scene;
 use crate::scheme::{DPRKN6, DPRKN8, NystromTable};
 use crate::state::State;
-use crate::study::accuracy::order::exact_rung_error;
 use std::time::Instant;
 
 /// Most steps (accepted and rejected) one run may take.

@@ -145,3 +145,24 @@ pub fn check_request(t_end: f64, tol: f64) -> Result<(), Error> {
     crate::scene::positive("tolerance", tol)?;
     Ok(())
 }
+
+/// The exponent `k` of `e ~ TOL^k` for an error-per-step controller whose
+/// estimate behaves like `h^estimate_power`, advancing with an order-`order`
+/// solution: `k = order / estimate_power` (see the tolerance ladder's documentation).
+pub fn proportionality_exponent(order: u32, estimate_power: u32) -> f64 {
+    order as f64 / estimate_power.max(1) as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_exponent_follows_the_powers() {
+        // order 6 with an estimate of power 5 (error per step): 6/5
+        assert_eq!(proportionality_exponent(6, 5), 1.2);
+        assert_eq!(proportionality_exponent(8, 8), 1.0);
+        // a power of 0 is read as 1, never a division by zero
+        assert_eq!(proportionality_exponent(4, 0), 4.0);
+    }
+}

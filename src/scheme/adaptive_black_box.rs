@@ -7,7 +7,7 @@
 //!
 //! ```
 //! use stepladder::guard;
-//! use stepladder::study::{AdaptiveBlackBox, AdaptiveClaims, Advance};
+//! use stepladder::scheme::{AdaptiveBlackBox, AdaptiveClaims, Advance};
 //! use stepladder::scene::KeplerCircular;
 //! use stepladder::scheme::Force;
 //!
@@ -62,7 +62,7 @@
 //! guard::assert_adaptive(&theirs, &KeplerCircular);
 //! ```
 
-use super::integrator::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request};
+use super::adaptive::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, check_request};
 use crate::error::Error;
 use crate::scene::Scene;
 use crate::scheme::Force;
