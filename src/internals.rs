@@ -14,7 +14,7 @@ pub use crate::parallel;
 pub use crate::run;
 pub use crate::scheme::compensated;
 pub use crate::study::{
-    accuracy, adaptive, breakdown, case, cost, geometry, hard, round_off, stability, verdict,
+    accuracy, adaptive, breakdown, cost, geometry, hard, round_off, stability, verdict,
 };
 pub use crate::tolerance;
 pub use crate::wording;

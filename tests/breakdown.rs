@@ -404,3 +404,33 @@ fn a_breakdown_on_seven_bodies_fails_too() {
     };
     fails_with_breakdown(&step, &stars, threshold);
 }
+
+/// The clean coarser run a breakdown is set against is the first that
+/// resolved the motion: broken below a hundredth of a period and run at
+/// 0.006 periods, the energy run stops at step 1, every finer probe stops
+/// too, and the probe's first coarser step, 0.012 periods, is past the fault
+/// and resolves the oscillator (Verlet's relative energy error there is
+/// about (h w)^2/8 = 7e-4, within the ceiling). A coarser step whose error
+/// is above the ceiling would prove nothing, and the rule must not cite one.
+#[test]
+fn a_breakdown_cites_the_first_coarser_step_that_resolved_the_motion() {
+    let scene = Harmonic::default();
+    let step = broken(&scene, Fault::NaN, 0.01);
+    let h = 0.006 * scene.period();
+    let spec = EnergySpec {
+        h: Some(h),
+        ..EnergySpec::default()
+    };
+    let e = energy_drift(&step, &scene, &spec).unwrap();
+    assert_eq!(e.verdict, Verdict::Fail, "{}", e.reason);
+    let b = e.breakdown.expect("a breakdown, not instability");
+    assert_eq!(b.clean_h, Some(2.0 * h), "{}", b.describe());
+    let error = b.clean_error.expect("the clean run's error");
+    let w_h = 2.0 * h * scene.frequency();
+    assert!(
+        error > 0.0
+            && error <= stepladder::internals::tolerance::ERROR_CEILING
+            && error < w_h * w_h,
+        "clean error {error:e} at h w = {w_h}"
+    );
+}

@@ -7,6 +7,7 @@
 //! figures) and the `stepladder` command ([`cli`]). None of it is published: a crate that
 //! guards its integrator depends on `stepladder` alone.
 
+pub mod case;
 pub mod cli;
 pub mod corpus;
 pub mod peer;

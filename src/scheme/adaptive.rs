@@ -4,6 +4,7 @@
 
 use crate::error::Error;
 use crate::scene::Scene;
+use crate::scheme::SchemeVisitor;
 use crate::state::State;
 use serde::Serialize;
 use std::time::Duration;
@@ -68,7 +69,7 @@ pub struct AdaptiveClaims {
     pub estimate_power: u32,
     /// The global error against the tolerance it should show, `~ TOL^k`
     /// (`None` where theory predicts no single exponent over the ladder):
-    /// see [`crate::study::adaptive::ladder::proportionality_exponent`].
+    /// see [`proportionality_exponent`].
     pub proportionality: Option<f64>,
     /// The method is symplectic (no adaptive pair here is).
     pub symplectic: bool,
@@ -113,18 +114,12 @@ pub trait AdaptiveIntegrator: Sync {
         tol: f64,
     ) -> Result<AdaptiveRun<D>, Error>;
 
-    /// The worst global error, against the scene's exact solution, of the
-    /// method this integrator advances with, run at the fixed step `t_end /
-    /// steps` from the initial state: `None` where it has no fixed-step
-    /// form or the scene no exact solution. The tolerance ladder uses it to
-    /// tell a method not yet at its asymptotic order at the ladder's steps
-    /// from a controller that misses its claim.
-    fn fixed_step_error<S: Scene<D>, const D: usize>(
-        &self,
-        _scene: &S,
-        _t_end: f64,
-        _steps: u64,
-    ) -> Option<f64> {
+    /// The fixed-step method this integrator advances with, handed to
+    /// `visitor` (`None` where it has none). The tolerance ladder runs it at
+    /// the ladder's steps, against the scene's exact solution, to tell a
+    /// method not yet at its asymptotic order there from a controller that
+    /// misses its claim.
+    fn visit_fixed_step<V: SchemeVisitor>(&self, _visitor: V) -> Option<V::Output> {
         None
     }
 

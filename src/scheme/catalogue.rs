@@ -2,10 +2,10 @@
 //! table) plus one line here; every test, study and report loops over it.
 
 use super::composition::{FOREST_RUTH, KAHAN_LI8, YOSHIDA6};
-use super::nystrom_tables::{DPRKN6, NYSTROM4};
 use super::nystrom_splitting::{
     BLANES_MOAN_SRKN11, MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5,
 };
+use super::nystrom_tables::{DPRKN6, NYSTROM4};
 use super::splitting::{EULER_CROMER, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
 use super::{Euler, ImplicitMidpoint, Leapfrog, Rk4, Scheme, SchemeMeta, StormerVerlet};
 use crate::error::Error;

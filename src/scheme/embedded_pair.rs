@@ -42,9 +42,8 @@ use super::adaptive::{
     proportionality_exponent,
 };
 use crate::error::Error;
-use crate::run::exact_rung_error;
 use crate::scene::Scene;
-use crate::scheme::{DPRKN6, DPRKN8, NystromTable};
+use crate::scheme::{DPRKN6, DPRKN8, NystromTable, SchemeVisitor};
 use crate::state::State;
 use std::time::Instant;
 
@@ -190,14 +189,8 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
         }
     }
 
-    fn fixed_step_error<P: Scene<D>, const D: usize>(
-        &self,
-        scene: &P,
-        t_end: f64,
-        steps: u64,
-    ) -> Option<f64> {
-        // measured as the order study measures a rung
-        exact_rung_error(self.table, scene, t_end, steps.max(1)).filter(|e| e.is_finite())
+    fn visit_fixed_step<V: SchemeVisitor>(&self, visitor: V) -> Option<V::Output> {
+        Some(visitor.visit(self.table))
     }
 
     fn integrate<P: Scene<D>, const D: usize>(

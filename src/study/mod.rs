@@ -33,8 +33,6 @@ pub mod accuracy;
 pub mod adaptive;
 #[doc(hidden)]
 pub mod breakdown;
-#[doc(hidden)]
-pub mod case;
 mod claims;
 #[doc(hidden)]
 pub mod cost;

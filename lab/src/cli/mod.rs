@@ -2,6 +2,7 @@
 //! whole suite). Exit status: 0 success, 1 a verdict failed, 2 bad input or
 //! an error, with a one-line message on stderr.
 
+use crate::case::case;
 use crate::report;
 use crate::suite::run_suite;
 use clap::{Args, Parser, Subcommand};
@@ -12,7 +13,6 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use stepladder::error::Error;
 use stepladder::internals::accuracy::order::{OrderRecord, OrderSpec};
-use stepladder::internals::case::case;
 use stepladder::internals::geometry::energy::EnergySpec;
 use stepladder::internals::geometry::reverse::ReverseSpec;
 use stepladder::internals::geometry::symplectic::SymplecticSpec;
@@ -118,7 +118,7 @@ struct CaseArgs {
 }
 
 impl CaseArgs {
-    fn case(&self) -> Result<Box<dyn stepladder::internals::case::Case>, Error> {
+    fn case(&self) -> Result<Box<dyn crate::case::Case>, Error> {
         case(&self.scheme, &AnyScene::parse(&self.scene)?)
     }
 }

@@ -24,8 +24,8 @@ pub mod scenes;
 
 pub use pairs::{broken as broken_pairs, correct as correct_pairs, entries};
 
+use crate::case::{Bound, Case};
 use serde::Serialize;
-use stepladder::internals::case::{Bound, Case};
 use stepladder::scene::Scene;
 use stepladder::scheme::Scheme;
 use stepladder::study::Verdict;

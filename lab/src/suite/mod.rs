@@ -2,8 +2,8 @@
 //! Cases run in parallel on scoped threads, but results are stored by case,
 //! so the records are the same whatever the thread count.
 
+use crate::case::{Case, case};
 use stepladder::error::Error;
-use stepladder::internals::case::{Case, case};
 
 pub mod adaptive;
 pub mod hard_cases;

@@ -4,12 +4,12 @@
 //! them ([`crate::peer`]), the cheapest scheme per target, and, apart
 //! from these deterministic records, the wall time it all takes here.
 
+use crate::case::case;
 use crate::peer::{IntegratorVisitor, PEERS, PeerId, PeerTimes, PeerWork, peer_work};
 use serde::Serialize;
 use std::time::Duration;
 use stepladder::error::Error;
 use stepladder::internals::accuracy::order::{OrderRecord, OrderSpec};
-use stepladder::internals::case::case;
 use stepladder::internals::cost::step_time::{SPEED_STEP, time_run};
 use stepladder::internals::cost::work_points::{
     ENERGY_PERIODS, Reach, SchemeWork, TARGETS, TargetCost, cheapest, cost_to_reach, scheme_work,

@@ -349,7 +349,7 @@ fn high_orders_pass_on_scenes_without_an_exact_solution() {
 fn high_orders_pass_near_the_separatrix_of_the_built_in_well() {
     let well = AnyScene::parse("anharmonic:x0=0.95").expect("a valid scene");
     for id in ["euler", "rk4", "kahan-li8"] {
-        let case = stepladder::internals::case::case(id, &well).expect("catalogue id");
+        let case = stepladder_lab::case::case(id, &well).expect("catalogue id");
         let r = case.order(&OrderSpec::default()).expect("valid defaults");
         assert_passes(&r);
         let hidden = case

@@ -14,7 +14,6 @@ use stepladder::internals::accuracy::order::{OrderSpec, global_order};
 use stepladder::internals::accuracy::pin::{
     Pin, PinOutcome, check_pin_with, pin_path, pinned_error,
 };
-use stepladder::internals::case::case;
 use stepladder::internals::parallel::{default_threads, parallel_map};
 use stepladder::internals::run::integrate;
 use stepladder::internals::tolerance::TWIN_SCALE;
@@ -27,6 +26,7 @@ use stepladder::scheme::{
     VerletComposition, YOSHIDA6,
 };
 use stepladder::state::{Real, State};
+use stepladder_lab::case::case;
 
 #[test]
 fn the_catalogue_keeps_its_pinned_errors() {

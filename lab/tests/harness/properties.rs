@@ -280,7 +280,6 @@ proptest! {
 // ---------------------------------------------------------------------------
 
 use stepladder::internals::accuracy::order::OrderRecord;
-use stepladder::internals::case::case;
 use stepladder::internals::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
 use stepladder::internals::geometry::reverse::ReverseRecord;
 use stepladder::internals::geometry::symplectic::{
@@ -289,6 +288,7 @@ use stepladder::internals::geometry::symplectic::{
 use stepladder::internals::tolerance::ORDER_RESOLUTION;
 use stepladder::scene::{Anharmonic, AnyScene, KeplerCircular, KeplerEccentric, Scaled};
 use stepladder::study::Verdict;
+use stepladder_lab::case::case;
 
 /// The four verdicts of one scheme on one scene, with their records.
 #[derive(Clone, Debug)]

@@ -74,9 +74,11 @@ use super::record::{
 };
 use crate::error::Error;
 use crate::maths::fit::{OrderFit, order_fit_with_round_off, power_law};
-use crate::run::caught;
+use crate::run::{caught, exact_rung_error};
 use crate::scene::Scene;
-use crate::scheme::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
+use crate::scheme::{
+    AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd, Scheme, SchemeVisitor,
+};
 use crate::state::State;
 use crate::study::geometry::energy::{EnergyClass, classify_growth, energy_norm};
 use crate::study::verdict::Verdict;
@@ -421,8 +423,14 @@ fn method_order_at_steps<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     let mut perturbation = Vec::new();
     for p in points.iter().filter(|p| p.fitted) {
         // supporting evidence only: a panic here leaves it out
-        let e = caught(|| integrator.fixed_step_error(scene, t_end, p.accepted))
+        let fixed = FixedStepError {
+            scene,
+            t_end,
+            steps: p.accepted.max(1),
+        };
+        let e = caught(|| integrator.visit_fixed_step(fixed))
             .ok()
+            .flatten()
             .flatten()?;
         if e.is_nan() || e <= 0.0 {
             return None;
@@ -540,6 +548,22 @@ fn round_trip<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
 /// the ladder's reach: undecided, not refuted. A method slower than its
 /// order, or an exponent that disagrees with the method's own order, still
 /// fails.
+/// The worst global error of a fixed-step method run at `t_end / steps`,
+/// measured as the order study measures a rung (`None` where the scene has
+/// no exact solution or the run does not complete).
+struct FixedStepError<'a, S, const D: usize> {
+    scene: &'a S,
+    t_end: f64,
+    steps: u64,
+}
+
+impl<S: Scene<D>, const D: usize> SchemeVisitor for FixedStepError<'_, S, D> {
+    type Output = Option<f64>;
+    fn visit<M: Scheme + Sync + 'static>(self, scheme: &'static M) -> Option<f64> {
+        exact_rung_error(scheme, self.scene, self.t_end, self.steps).filter(|e| e.is_finite())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,16 +2,21 @@
 //! time, with every study available on it. Inside, the scheme and the scene
 //! are concrete types, so each study runs fully monomorphised code; the only
 //! dynamic dispatch is the one call that starts a study.
+//!
+//! It lives in the lab, not in the published core: binding every catalogue
+//! scheme to every built-in scene instantiates every study for each pair,
+//! code a user's test crate would otherwise compile and never call.
 
-use crate::error::Error;
-use crate::scene::{AnyScene, Hidden, Scene, SceneMeta, SceneVisitor};
-use crate::scheme::{Scheme, SchemeMeta, SchemeVisitor};
-use crate::study::accuracy::order::{OrderRecord, OrderSpec, global_order};
-use crate::study::accuracy::pin::{PinOutcome, check_pin};
-use crate::study::cost::evaluations::{EvaluationRecord, counting_step, evaluations};
-use crate::study::geometry::energy::{EnergyRecord, EnergySpec, energy_drift};
-use crate::study::geometry::reverse::{ReverseRecord, ReverseSpec, reversibility};
-use crate::study::geometry::symplectic::{SymplecticRecord, SymplecticSpec, symplecticity};
+use stepladder::error::Error;
+use stepladder::internals::compensated::visit_any_scheme;
+use stepladder::internals::cost::count::counting_step;
+use stepladder::scene::{AnyScene, Hidden, Scene, SceneMeta, SceneVisitor};
+use stepladder::scheme::{Scheme, SchemeMeta, SchemeVisitor};
+use stepladder::study::{
+    EnergyRecord, EnergySpec, EvaluationRecord, OrderRecord, OrderSpec, PinOutcome, ReverseRecord,
+    ReverseSpec, SymplecticRecord, SymplecticSpec, check_pin, energy_drift, evaluations,
+    global_order, reversibility, symplecticity,
+};
 
 /// The studies that can be run on a scheme bound to a scene.
 pub trait Case: Send + Sync {
@@ -22,7 +27,7 @@ pub trait Case: Send + Sync {
     /// The global order study.
     fn order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error>;
     /// The global order study with the scene's exact solution withheld
-    /// ([`crate::scene::Hidden`]): errors against the half-step run.
+    /// ([`stepladder::scene::Hidden`]): errors against the half-step run.
     fn hidden_order(&self, spec: &OrderSpec) -> Result<OrderRecord, Error>;
     /// The long-run energy study.
     fn energy(&self, spec: &EnergySpec) -> Result<EnergyRecord, Error>;
@@ -32,7 +37,7 @@ pub trait Case: Send + Sync {
     fn reverse(&self, spec: &ReverseSpec) -> Result<ReverseRecord, Error>;
     /// The force evaluations counted against the claim.
     fn evaluations(&self) -> EvaluationRecord;
-    /// The error pin in `dir` ([`crate::study::accuracy::pin::check_pin`]).
+    /// The error pin in `dir` ([`stepladder::study::check_pin`]).
     fn pin(&self, dir: &std::path::Path) -> Result<PinOutcome, String>;
 }
 
@@ -82,14 +87,14 @@ where
 /// Binds the catalogue scheme (or compensated variant) `scheme_id` to `scene`.
 ///
 /// ```
-/// use stepladder::study::case::case;
+/// use stepladder_lab::case::case;
 /// use stepladder::scene::AnyScene;
 /// let c = case("leapfrog", &AnyScene::parse("kepler-circular").unwrap()).unwrap();
 /// assert_eq!(c.scheme().order, 2);
 /// assert!(case("rk9", &AnyScene::parse("harmonic").unwrap()).is_err());
 /// ```
 pub fn case(scheme_id: &str, scene: &AnyScene) -> Result<Box<dyn Case>, Error> {
-    crate::scheme::compensated::visit_any_scheme(scheme_id, BindScheme(scene))
+    visit_any_scheme(scheme_id, BindScheme(scene))
 }
 
 struct BindScheme<'a>(&'a AnyScene);
