@@ -1,0 +1,119 @@
+//! The stability study's arithmetic against closed forms: the spectral
+//! radius and its excess over 1 for 2x2 maps whose eigenvalues are known,
+//! the determinant's round-off bound in proportion to its two products, the
+//! growth per period from the growth per step, and explicit Euler's growth
+//! law on the oscillator, whose one-step map has `det = 1 + z^2` exactly.
+
+use stepladder::internals::stability::{
+    determinant_round_off, growth_law, per_period, radius_excess, spectral_radius,
+};
+use stepladder::nalgebra::Matrix2;
+use stepladder::scheme::{Euler, VELOCITY_VERLET};
+use stepladder::study::GrowthSource;
+
+/// A rotation by `theta` scaled by `s`: eigenvalues `s e^(+-i theta)`.
+fn scaled_rotation(s: f64, theta: f64) -> Matrix2<f64> {
+    let (sin, cos) = theta.sin_cos();
+    Matrix2::new(s * cos, -s * sin, s * sin, s * cos)
+}
+
+#[test]
+fn the_spectral_radius_of_maps_with_known_eigenvalues() {
+    // real eigenvalues 2 and 1/2: half trace 5/4, discriminant 9/16
+    assert_eq!(spectral_radius(&Matrix2::new(2.0, 0.0, 0.0, 0.5)), 2.0);
+    // eigenvalues +-2i: complex, the radius is sqrt(det)
+    assert_eq!(spectral_radius(&Matrix2::new(0.0, 1.0, -4.0, 0.0)), 2.0);
+    // a rotation: radius 1 to round-off
+    let r = spectral_radius(&scaled_rotation(1.0, 0.3));
+    assert!((r - 1.0).abs() < 4.0 * f64::EPSILON, "{r}");
+}
+
+#[test]
+fn the_radius_excess_keeps_its_digits_where_sqrt_det_minus_one_loses_them() {
+    // rho = 1 + delta exactly in real arithmetic; the determinant's
+    // round-off, a few eps, is 1e-6 of delta = 1e-9
+    let delta = 1e-9;
+    let m = scaled_rotation(1.0 + delta, 0.3);
+    let excess = radius_excess(&m);
+    assert!(
+        ((excess - delta) / delta).abs() < 1e-5,
+        "{excess:e} against {delta:e}"
+    );
+    // real eigenvalues: rho - 1 directly
+    assert_eq!(radius_excess(&Matrix2::new(2.0, 0.0, 0.0, 0.5)), 1.0);
+}
+
+#[test]
+fn the_determinant_round_off_grows_with_its_two_products() {
+    // |m11 m22| + |m12 m21| = 4 + 6 = 10, against at least 1 for the identity
+    let unit = determinant_round_off(&VELOCITY_VERLET, &Matrix2::identity());
+    let ten = determinant_round_off(&VELOCITY_VERLET, &Matrix2::new(1.0, 2.0, 3.0, 4.0));
+    assert!(unit > 0.0);
+    assert!(((ten / unit) - 10.0).abs() < 1e-12, "{}", ten / unit);
+    // products below 1 still count as 1
+    let small = determinant_round_off(&VELOCITY_VERLET, &Matrix2::new(0.1, 0.0, 0.0, 0.1));
+    assert_eq!(small, unit);
+}
+
+#[test]
+fn the_growth_per_period_compounds_the_growth_per_step() {
+    // 2 pi / z = n steps a period, each multiplying by 1 + g: (1 + g)^n - 1,
+    // by powf where 1 + g keeps g's digits, else by the binomial series
+    // n g (1 + (n - 1) g / 2) (the next term is below 1e-20 of it)
+    for (g, z) in [(1e-3, 0.5), (1e-12, 0.1), (0.25, 2.0)] {
+        let n = std::f64::consts::TAU / z;
+        let expected = if g > 1e-6 {
+            (1.0f64 + g).powf(n) - 1.0
+        } else {
+            n * g * (1.0 + (n - 1.0) * g / 2.0)
+        };
+        let got = per_period(g, z);
+        assert!(
+            ((got - expected) / expected).abs() < 1e-9,
+            "g = {g:e}, z = {z}: {got:e} against {expected:e}"
+        );
+    }
+}
+
+#[test]
+fn explicit_eulers_growth_law_is_z_squared() {
+    // det M(z) = 1 + z^2: power 2, coefficient 1, and at each reported z the
+    // growth per step sqrt(1 + z^2) - 1
+    let law = growth_law(&Euler).expect("explicit Euler grows at every z");
+    assert_eq!(law.power, 2);
+    // within the fit's own round-off bound of the exact 1
+    assert!(
+        (law.coefficient - 1.0).abs() <= law.coefficient_round_off
+            && law.coefficient_round_off < 0.01,
+        "coefficient {} (round-off {:e})",
+        law.coefficient,
+        law.coefficient_round_off
+    );
+    // the window spans a factor 4 of z from where det - 1 is 64 times its
+    // round-off: round-off moves the end-to-end slope by at most
+    // 2 / (64 ln 4) = 0.023
+    let slope_round_off = 2.0 / (64.0 * 4f64.ln());
+    assert!(
+        (law.power_fitted - 2.0).abs() <= slope_round_off,
+        "{}",
+        law.power_fitted
+    );
+    assert!(!law.at.is_empty());
+    for at in &law.at {
+        let z = at.z;
+        let exact = (z * z).ln_1p() / 2.0; // ln(1 + g) = ln(1 + z^2) / 2
+        let per_step = at.per_step.expect("resolved");
+        assert!(
+            (per_step.ln_1p() - exact).abs() < 1e-9 * exact.max(1e-300),
+            "z = {z}: {per_step:e} against {:e} ({:?})",
+            exact.exp_m1(),
+            at.source
+        );
+        assert!(matches!(
+            at.source,
+            GrowthSource::Measured | GrowthSource::Law
+        ));
+    }
+    // a symplectic map has det = 1: no growth law
+    assert!(growth_law(&VELOCITY_VERLET).is_none());
+}
