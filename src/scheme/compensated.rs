@@ -1,12 +1,11 @@
-//! Compensated-summation variants of the three Verlet forms: the same maps in
-//! exact arithmetic, with the round-off of their position and velocity
-//! updates carried along instead of lost.
+//! Compensated summation of a scheme's coordinate updates, and the
+//! compensated variants of the three Verlet forms.
 //!
 //! A step adds a small increment (`h v`, `h a` or `h^2 a`) to a much larger
 //! coordinate. Rounded to the coordinate's precision, the increment loses its
 //! low bits: about `eps |q|` per step, whatever the step, so the error a run
-//! accumulates grows as the step shrinks. Here each updated coordinate is
-//! carried as a pair `value + low`, where `low` holds exactly what rounding
+//! accumulates grows as the step shrinks. Compensated, each updated coordinate
+//! is carried as a pair `value + low`, where `low` holds exactly what rounding
 //! `value` dropped, and is added back with the next increment (Kahan's
 //! compensated summation). The rounding error of each addition is obtained
 //! exactly by Knuth's TwoSum, which, unlike Kahan's three-operation form,
@@ -19,7 +18,11 @@
 //! parts beside the values; nothing is allocated and every scalar type works
 //! (dual numbers carry the same compensation in their derivative parts).
 //!
-//! These variants are not in the main [`super::catalogue`]: at the steps the
+//! Each Verlet form is written once, generic over a [`Summation`]: with
+//! [`Rounded`] it is the catalogue's scheme, bit for bit, and wrapped in
+//! [`Compensated`] it runs the same code with [`Kahan`] sums.
+//!
+//! The variants are not in the main [`super::catalogue`]: at the steps the
 //! catalogue's studies use, their results are those of their plain twins to
 //! within round-off a million times below the truncation error, so they would
 //! add rows that differ only in digits the studies do not resolve. They are
@@ -27,13 +30,14 @@
 //! [`crate::study::round_off::longrun`]), which is where they differ, and their order,
 //! symplecticity and time symmetry are tested like any catalogue scheme's.
 
-use super::splitting::{Flow, SplittingTable, VELOCITY_VERLET};
+use super::splitting::{SplittingTable, VELOCITY_VERLET};
 use super::verlet::{Leapfrog, StormerVerlet};
 use super::{Scheme, SchemeMeta, SchemeVisitor, StepFailure, scheme_ids};
 use crate::error::Error;
 use crate::scene::Scene;
 use crate::state::{Real, State};
 use nalgebra::SVector;
+use std::fmt::Debug;
 
 /// `(s, e)` with `s = fl(a + b)` and `s + e = a + b` exactly, componentwise
 /// (Knuth's TwoSum: six operations, no comparison, exact for any magnitudes
@@ -49,6 +53,92 @@ pub fn two_sum<R: Real, const D: usize>(
     (s, (a - a_virtual) + (b - b_virtual))
 }
 
+/// How a scheme accumulates increments into a coordinate: the few operations
+/// the Verlet forms are written in, so that one code path runs both rounded
+/// and compensated.
+pub trait Summation: Copy + Debug + Default + PartialEq + Send + Sync + 'static {
+    /// A coordinate as this summation carries it.
+    type Sum<R: Real, const D: usize>: Copy + Debug + PartialEq;
+
+    /// A coordinate with nothing lost yet.
+    fn new<R: Real, const D: usize>(value: SVector<R, D>) -> Self::Sum<R, D>;
+
+    /// The coordinate rounded to working precision.
+    fn value<R: Real, const D: usize>(sum: &Self::Sum<R, D>) -> SVector<R, D>;
+
+    /// Adds `increment` to the coordinate.
+    fn add<R: Real, const D: usize>(sum: &mut Self::Sum<R, D>, increment: SVector<R, D>);
+
+    /// `sum + increment`, rounded once, without changing `sum`.
+    fn plus<R: Real, const D: usize>(
+        sum: &Self::Sum<R, D>,
+        increment: SVector<R, D>,
+    ) -> SVector<R, D>;
+
+    /// `a - b`, rounded once.
+    fn difference<R: Real, const D: usize>(
+        a: &Self::Sum<R, D>,
+        b: &Self::Sum<R, D>,
+    ) -> SVector<R, D>;
+
+    /// `2 current - previous + increment`: the two-step recurrence.
+    fn two_step<R: Real, const D: usize>(
+        current: &Self::Sum<R, D>,
+        previous: &Self::Sum<R, D>,
+        increment: SVector<R, D>,
+    ) -> Self::Sum<R, D>;
+}
+
+/// Every addition rounded to working precision: the plain schemes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Rounded;
+
+impl Summation for Rounded {
+    type Sum<R: Real, const D: usize> = SVector<R, D>;
+
+    #[inline(always)]
+    fn new<R: Real, const D: usize>(value: SVector<R, D>) -> SVector<R, D> {
+        value
+    }
+
+    #[inline(always)]
+    fn value<R: Real, const D: usize>(sum: &SVector<R, D>) -> SVector<R, D> {
+        *sum
+    }
+
+    #[inline(always)]
+    fn add<R: Real, const D: usize>(sum: &mut SVector<R, D>, increment: SVector<R, D>) {
+        *sum += increment;
+    }
+
+    #[inline(always)]
+    fn plus<R: Real, const D: usize>(
+        sum: &SVector<R, D>,
+        increment: SVector<R, D>,
+    ) -> SVector<R, D> {
+        sum + increment
+    }
+
+    #[inline(always)]
+    fn difference<R: Real, const D: usize>(a: &SVector<R, D>, b: &SVector<R, D>) -> SVector<R, D> {
+        a - b
+    }
+
+    #[inline(always)]
+    fn two_step<R: Real, const D: usize>(
+        current: &SVector<R, D>,
+        previous: &SVector<R, D>,
+        increment: SVector<R, D>,
+    ) -> SVector<R, D> {
+        (current * R::of(2.0) - previous) + increment
+    }
+}
+
+/// Kahan's compensated summation with Knuth's TwoSum: each coordinate carried
+/// as a [`Summed`] pair.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Kahan;
+
 /// A coordinate carried as `value + low`: `value` is what a plain scheme would
 /// hold, `low` the part of the exact running sum that rounding `value` lost
 /// (at most half an ulp of `value`).
@@ -60,214 +150,152 @@ pub struct Summed<R: Real, const D: usize> {
     pub low: SVector<R, D>,
 }
 
-impl<R: Real, const D: usize> Summed<R, D> {
-    /// A coordinate with nothing lost yet.
+impl Summation for Kahan {
+    type Sum<R: Real, const D: usize> = Summed<R, D>;
+
     #[inline(always)]
-    pub fn new(value: SVector<R, D>) -> Self {
-        Self {
+    fn new<R: Real, const D: usize>(value: SVector<R, D>) -> Summed<R, D> {
+        Summed {
             value,
             low: SVector::zeros(),
         }
     }
 
-    /// Adds `increment` with compensation: the low part lost so far rides
-    /// along with the increment, and what this addition loses becomes the new
-    /// low part.
     #[inline(always)]
-    pub fn add(&mut self, increment: SVector<R, D>) {
-        let (value, low) = two_sum(self.value, increment + self.low);
-        self.value = value;
-        self.low = low;
+    fn value<R: Real, const D: usize>(sum: &Summed<R, D>) -> SVector<R, D> {
+        sum.value
     }
-}
 
-/// The two-step Störmer-Verlet scheme, `q(n+1) = 2 q(n) - q(n-1) + h^2 a(q(n))`,
-/// with both positions carried as `value + low` and the recurrence evaluated
-/// in that form: `2 q(n) - q(n-1)` of the values exactly (TwoSum), then the
-/// low parts and `h^2 a` added to its error term, then one TwoSum back to a
-/// value and a low part. The central-difference velocity
-/// `(q(n+1) - q(n-1)) / 2h` subtracts the values and the low parts
-/// separately, so it no longer divides a difference rounded at `eps |q|` by `2h`.
-///
-/// Start-up and read-out are those of [`StormerVerlet`].
-#[derive(Clone, Copy, Debug, Default)]
-pub struct StormerVerletCompensated;
-
-/// Two successive positions, each with its low part, and the acceleration at
-/// the later one.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TwoStepCompensated<R: Real, const D: usize> {
-    /// `q(n-1)`.
-    pub previous: Summed<R, D>,
-    /// `q(n)`.
-    pub current: Summed<R, D>,
-    /// `a(q(n))`, at the rounded position.
-    pub a: SVector<R, D>,
-}
-
-impl<R: Real, const D: usize> TwoStepCompensated<R, D> {
-    /// `q(n+1) = 2 q(n) - q(n-1) + h^2 a(q(n))` in compensated form.
+    /// The low part lost so far rides along with the increment, and what this
+    /// addition loses becomes the new low part.
     #[inline(always)]
-    fn next(&self, h: R) -> Summed<R, D> {
+    fn add<R: Real, const D: usize>(sum: &mut Summed<R, D>, increment: SVector<R, D>) {
+        let (value, low) = two_sum(sum.value, increment + sum.low);
+        *sum = Summed { value, low };
+    }
+
+    #[inline(always)]
+    fn plus<R: Real, const D: usize>(
+        sum: &Summed<R, D>,
+        increment: SVector<R, D>,
+    ) -> SVector<R, D> {
+        sum.value + (sum.low + increment)
+    }
+
+    /// The values and the low parts subtracted separately, so a difference of
+    /// nearby coordinates keeps the bits rounding would have cancelled.
+    #[inline(always)]
+    fn difference<R: Real, const D: usize>(a: &Summed<R, D>, b: &Summed<R, D>) -> SVector<R, D> {
+        (a.value - b.value) + (a.low - b.low)
+    }
+
+    /// `2 current - previous` of the values exactly (TwoSum), then the low
+    /// parts and the increment added to its error term, then one TwoSum back
+    /// to a value and a low part.
+    #[inline(always)]
+    fn two_step<R: Real, const D: usize>(
+        current: &Summed<R, D>,
+        previous: &Summed<R, D>,
+        increment: SVector<R, D>,
+    ) -> Summed<R, D> {
         let two = R::of(2.0);
-        let (value, error) = two_sum(self.current.value * two, -self.previous.value);
-        let small = error + (self.current.low * two - self.previous.low) + self.a * (h * h);
+        let (value, error) = two_sum(current.value * two, -previous.value);
+        let small = error + (current.low * two - previous.low) + increment;
         let (value, low) = two_sum(value, small);
         Summed { value, low }
     }
 }
 
-impl StormerVerletCompensated {
-    /// What the compensated two-step scheme claims: the same as [`StormerVerlet`].
-    pub const META: SchemeMeta = SchemeMeta {
-        id: "stormer-verlet-compensated",
-        name: "Störmer-Verlet (two-step), compensated summation",
-        reference: "StormerVerlet with positions carried to twice the working precision: W. Kahan, Commun. ACM 8, 40 (1965); D. E. Knuth, The Art of Computer Programming 2, 4.2.2",
-        ..StormerVerlet::META
+/// A scheme written once for any [`Summation`]: the same steps, with its
+/// coordinates carried as that summation's sums. With [`Rounded`] it is the
+/// scheme itself; [`Compensated`] runs it with [`Kahan`].
+pub trait Summable: Sync + 'static {
+    /// What the scheme keeps between steps, its coordinates summed by `S`.
+    type Carry<R: Real, const D: usize, S: Summation>: Clone + Debug;
+
+    /// [`Scheme::start`] with sums `S`.
+    fn start_summed<S: Summation, R: Real, const D: usize, Sc: Scene<D>>(
+        &self,
+        scene: &Sc,
+        state: &State<D, R>,
+        h: R,
+    ) -> Self::Carry<R, D, S>;
+
+    /// [`Scheme::step`] with sums `S`.
+    fn step_summed<S: Summation, R: Real, const D: usize, Sc: Scene<D>>(
+        &self,
+        scene: &Sc,
+        carry: &mut Self::Carry<R, D, S>,
+        h: R,
+    ) -> Result<(), StepFailure>;
+
+    /// [`Scheme::state`] with sums `S`.
+    fn state_summed<S: Summation, R: Real, const D: usize>(
+        &self,
+        carry: &Self::Carry<R, D, S>,
+        h: R,
+    ) -> State<D, R>;
+}
+
+/// Makes a [`Summable`] type a [`Scheme`] with every addition [`Rounded`]:
+/// `rounded_scheme!(Type, |scheme| claims)`, where `claims` is the
+/// `&SchemeMeta` of `scheme: &Type`.
+macro_rules! rounded_scheme {
+    ($ty:ty, |$scheme:ident| $meta:expr) => {
+        impl Scheme for $ty {
+            type Carry<R: Real, const D: usize> = <$ty as Summable>::Carry<R, D, Rounded>;
+
+            fn meta(&self) -> &SchemeMeta {
+                let $scheme = self;
+                $meta
+            }
+
+            fn start<R: Real, const D: usize, S: Scene<D>>(
+                &self,
+                scene: &S,
+                state: &State<D, R>,
+                h: R,
+            ) -> Self::Carry<R, D> {
+                self.start_summed::<Rounded, R, D, S>(scene, state, h)
+            }
+
+            #[inline(always)]
+            fn step<R: Real, const D: usize, S: Scene<D>>(
+                &self,
+                scene: &S,
+                carry: &mut Self::Carry<R, D>,
+                h: R,
+            ) -> Result<(), StepFailure> {
+                self.step_summed::<Rounded, R, D, S>(scene, carry, h)
+            }
+
+            fn state<R: Real, const D: usize>(
+                &self,
+                carry: &Self::Carry<R, D>,
+                h: R,
+            ) -> State<D, R> {
+                self.state_summed::<Rounded, R, D>(carry, h)
+            }
+        }
     };
 }
 
-impl Scheme for StormerVerletCompensated {
-    type Carry<R: Real, const D: usize> = TwoStepCompensated<R, D>;
+pub(super) use rounded_scheme;
 
-    fn meta(&self) -> &SchemeMeta {
-        &Self::META
-    }
-
-    fn start<R: Real, const D: usize, S: Scene<D>>(
-        &self,
-        scene: &S,
-        s: &State<D, R>,
-        h: R,
-    ) -> TwoStepCompensated<R, D> {
-        let a = scene.acceleration(&s.q);
-        let mut previous = Summed::new(s.q);
-        previous.add(a * (h * h * R::of(0.5)) - s.v * h);
-        TwoStepCompensated {
-            previous,
-            current: Summed::new(s.q),
-            a,
-        }
-    }
-
-    #[inline(always)]
-    fn step<R: Real, const D: usize, S: Scene<D>>(
-        &self,
-        scene: &S,
-        c: &mut TwoStepCompensated<R, D>,
-        h: R,
-    ) -> Result<(), StepFailure> {
-        let next = c.next(h);
-        c.previous = c.current;
-        c.current = next;
-        c.a = scene.acceleration(&next.value);
-        Ok(())
-    }
-
-    fn state<R: Real, const D: usize>(&self, c: &TwoStepCompensated<R, D>, h: R) -> State<D, R> {
-        let next = c.next(h);
-        let difference = (next.value - c.previous.value) + (next.low - c.previous.low);
-        State::new(c.current.value, difference / (h * R::of(2.0)))
-    }
-}
-
-/// Leap-frog, `q(n+1) = q(n) + h v(n+1/2)`, `v(n+3/2) = v(n+1/2) + h a(q(n+1))`,
-/// with the position and the half-step velocity each carried as
-/// `value + low`. Start-up and read-out are those of [`Leapfrog`].
-#[derive(Clone, Copy, Debug, Default)]
-pub struct LeapfrogCompensated;
-
-/// A whole-step position and the velocity half a step later, each with its
-/// low part, and `a(q)` at the rounded position.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StaggeredCompensated<R: Real, const D: usize> {
-    /// `q(n)`.
-    pub q: Summed<R, D>,
-    /// `v(n + 1/2)`.
-    pub v_half: Summed<R, D>,
-    /// `a(q(n))`.
-    pub a: SVector<R, D>,
-}
-
-impl LeapfrogCompensated {
-    /// What compensated leap-frog claims: the same as [`Leapfrog`].
-    pub const META: SchemeMeta = SchemeMeta {
-        id: "leapfrog-compensated",
-        name: "leap-frog, compensated summation",
-        reference: "Leapfrog with compensated position and velocity sums: W. Kahan, Commun. ACM 8, 40 (1965); D. E. Knuth, The Art of Computer Programming 2, 4.2.2",
-        ..Leapfrog::META
-    };
-}
-
-impl Scheme for LeapfrogCompensated {
-    type Carry<R: Real, const D: usize> = StaggeredCompensated<R, D>;
-
-    fn meta(&self) -> &SchemeMeta {
-        &Self::META
-    }
-
-    fn start<R: Real, const D: usize, S: Scene<D>>(
-        &self,
-        scene: &S,
-        s: &State<D, R>,
-        h: R,
-    ) -> StaggeredCompensated<R, D> {
-        let a = scene.acceleration(&s.q);
-        let mut v_half = Summed::new(s.v);
-        v_half.add(a * (h * R::of(0.5)));
-        StaggeredCompensated {
-            q: Summed::new(s.q),
-            v_half,
-            a,
-        }
-    }
-
-    #[inline(always)]
-    fn step<R: Real, const D: usize, S: Scene<D>>(
-        &self,
-        scene: &S,
-        c: &mut StaggeredCompensated<R, D>,
-        h: R,
-    ) -> Result<(), StepFailure> {
-        c.q.add(c.v_half.value * h);
-        c.a = scene.acceleration(&c.q.value);
-        c.v_half.add(c.a * h);
-        Ok(())
-    }
-
-    fn state<R: Real, const D: usize>(&self, c: &StaggeredCompensated<R, D>, h: R) -> State<D, R> {
-        State::new(
-            c.q.value,
-            c.v_half.value + (c.v_half.low - c.a * (h * R::of(0.5))),
-        )
-    }
-}
-
-/// A splitting scheme (see [`SplittingTable`]) whose drifts and kicks add to
-/// compensated sums: the same drift and kick weights, the same force
-/// evaluations, `q` and `v` each carried as `value + low`.
+/// A [`Summable`] scheme run with compensated ([`Kahan`]) sums under its own
+/// id: the same map in exact arithmetic, the same claims and force
+/// evaluations, with the round-off of its coordinate updates carried along
+/// instead of lost.
 #[derive(Clone, Copy, Debug)]
-pub struct CompensatedSplitting {
-    /// The variant's claims (those of the table, under its own id).
+pub struct Compensated<P> {
+    /// The variant's claims (those of `plain`, under its own id).
     pub meta: SchemeMeta,
-    /// The splitting it runs.
-    pub table: &'static SplittingTable,
+    /// The scheme it runs.
+    pub plain: P,
 }
 
-/// The carry of a compensated splitting: position and velocity with their
-/// low parts, and the acceleration reused by a first-same-as-last table.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SplittingCompensated<R: Real, const D: usize> {
-    /// Position.
-    pub q: Summed<R, D>,
-    /// Velocity.
-    pub v: Summed<R, D>,
-    /// `a(q)` at the rounded position, when the table reuses it.
-    pub a: SVector<R, D>,
-}
-
-impl Scheme for CompensatedSplitting {
-    type Carry<R: Real, const D: usize> = SplittingCompensated<R, D>;
+impl<P: Summable> Scheme for Compensated<P> {
+    type Carry<R: Real, const D: usize> = P::Carry<R, D, Kahan>;
 
     fn meta(&self) -> &SchemeMeta {
         &self.meta
@@ -276,73 +304,62 @@ impl Scheme for CompensatedSplitting {
     fn start<R: Real, const D: usize, S: Scene<D>>(
         &self,
         scene: &S,
-        s: &State<D, R>,
-        _: R,
-    ) -> SplittingCompensated<R, D> {
-        let a = if self.table.reuses_acceleration() {
-            scene.acceleration(&s.q)
-        } else {
-            SVector::zeros()
-        };
-        SplittingCompensated {
-            q: Summed::new(s.q),
-            v: Summed::new(s.v),
-            a,
-        }
+        state: &State<D, R>,
+        h: R,
+    ) -> Self::Carry<R, D> {
+        self.plain.start_summed::<Kahan, R, D, S>(scene, state, h)
     }
 
     #[inline(always)]
     fn step<R: Real, const D: usize, S: Scene<D>>(
         &self,
         scene: &S,
-        c: &mut SplittingCompensated<R, D>,
+        carry: &mut Self::Carry<R, D>,
         h: R,
     ) -> Result<(), StepFailure> {
-        let t = self.table;
-        match t.first {
-            Flow::Kick => {
-                let mut a = if t.reuses_acceleration() {
-                    c.a
-                } else {
-                    scene.acceleration(&c.q.value)
-                };
-                for (i, &b) in t.kick.iter().enumerate() {
-                    if i > 0 {
-                        a = scene.acceleration(&c.q.value);
-                    }
-                    c.v.add(a * (h * R::of(b)));
-                    if let Some(&d) = t.drift.get(i) {
-                        c.q.add(c.v.value * (h * R::of(d)));
-                    }
-                }
-                c.a = a;
-            }
-            Flow::Drift => {
-                for (i, &d) in t.drift.iter().enumerate() {
-                    c.q.add(c.v.value * (h * R::of(d)));
-                    if let Some(&b) = t.kick.get(i) {
-                        c.v.add(scene.acceleration(&c.q.value) * (h * R::of(b)));
-                    }
-                }
-            }
-        }
-        Ok(())
+        self.plain.step_summed::<Kahan, R, D, S>(scene, carry, h)
     }
 
-    fn state<R: Real, const D: usize>(&self, c: &SplittingCompensated<R, D>, _: R) -> State<D, R> {
-        State::new(c.q.value, c.v.value)
+    fn state<R: Real, const D: usize>(&self, carry: &Self::Carry<R, D>, h: R) -> State<D, R> {
+        self.plain.state_summed::<Kahan, R, D>(carry, h)
     }
 }
 
+/// The two-step Störmer-Verlet scheme with both positions carried as
+/// `value + low`; its central-difference velocity subtracts the values and
+/// the low parts separately, so it no longer divides a difference rounded at
+/// `eps |q|` by `2h`. Start-up and read-out are those of [`StormerVerlet`].
+pub const STORMER_VERLET_COMPENSATED: Compensated<StormerVerlet> = Compensated {
+    meta: SchemeMeta {
+        id: "stormer-verlet-compensated",
+        name: "Störmer-Verlet (two-step), compensated summation",
+        reference: "StormerVerlet with positions carried to twice the working precision: W. Kahan, Commun. ACM 8, 40 (1965); D. E. Knuth, The Art of Computer Programming 2, 4.2.2",
+        ..StormerVerlet::META
+    },
+    plain: StormerVerlet,
+};
+
+/// Leap-frog with the position and the half-step velocity each carried as
+/// `value + low`. Start-up and read-out are those of [`Leapfrog`].
+pub const LEAPFROG_COMPENSATED: Compensated<Leapfrog> = Compensated {
+    meta: SchemeMeta {
+        id: "leapfrog-compensated",
+        name: "leap-frog, compensated summation",
+        reference: "Leapfrog with compensated position and velocity sums: W. Kahan, Commun. ACM 8, 40 (1965); D. E. Knuth, The Art of Computer Programming 2, 4.2.2",
+        ..Leapfrog::META
+    },
+    plain: Leapfrog,
+};
+
 /// Velocity Verlet (kick-drift-kick) with compensated position and velocity sums.
-pub const VELOCITY_VERLET_COMPENSATED: CompensatedSplitting = CompensatedSplitting {
+pub const VELOCITY_VERLET_COMPENSATED: Compensated<SplittingTable> = Compensated {
     meta: SchemeMeta {
         id: "velocity-verlet-compensated",
         name: "velocity Verlet (kick-drift-kick), compensated summation",
         reference: "VELOCITY_VERLET with compensated position and velocity sums: W. Kahan, Commun. ACM 8, 40 (1965); D. E. Knuth, The Art of Computer Programming 2, 4.2.2",
         ..VELOCITY_VERLET.meta
     },
-    table: &VELOCITY_VERLET,
+    plain: VELOCITY_VERLET,
 };
 
 /// Something to do with a plain Verlet form and its compensated variant
@@ -389,8 +406,8 @@ macro_rules! pairs {
 }
 
 pairs![
-    (StormerVerlet, StormerVerletCompensated),
-    (Leapfrog, LeapfrogCompensated),
+    (StormerVerlet, STORMER_VERLET_COMPENSATED),
+    (Leapfrog, LEAPFROG_COMPENSATED),
     (VELOCITY_VERLET, VELOCITY_VERLET_COMPENSATED),
 ];
 

@@ -129,7 +129,7 @@ impl Scheme for ImplicitMidpoint {
                 match (SMatrix::<R, D, D>::identity() - jacobian(scene, &m, &a) * c2).try_inverse()
                 {
                     Some(inverse) => inverse * fixed_point,
-                    None => return Err(fail(c, k, correction)),
+                    None => return Err(fail(&mut c.last_iterations, k, correction)),
                 }
             } else {
                 fixed_point
@@ -152,7 +152,7 @@ impl Scheme for ImplicitMidpoint {
             }
             // an overflowed or NaN iterate never converges: stop spending on it
             if !correction.is_finite() {
-                return Err(fail(c, k, correction));
+                return Err(fail(&mut c.last_iterations, k, correction));
             }
             // a fixed-point iteration contracting by less than SWITCH_RATIO
             // per step is too slow (or diverging): Newton from here on
@@ -162,7 +162,7 @@ impl Scheme for ImplicitMidpoint {
             m += delta;
             previous = Some(correction);
         }
-        Err(fail(c, MAX_ITERATIONS, correction))
+        Err(fail(&mut c.last_iterations, MAX_ITERATIONS, correction))
     }
 
     fn state<R: Real, const D: usize>(&self, c: &MidpointCarry<R, D>, _: R) -> State<D, R> {
@@ -174,14 +174,10 @@ impl Scheme for ImplicitMidpoint {
     }
 }
 
-/// Records a failed solve of `iterations` iterations in the carry (whose
-/// state stays as it was) and describes it.
-fn fail<R: Real, const D: usize>(
-    c: &mut MidpointCarry<R, D>,
-    iterations: u32,
-    correction_squared: R,
-) -> StepFailure {
-    c.last_iterations = iterations;
+/// Records a failed solve of `iterations` iterations in the carry's count
+/// (its state stays as it was) and describes it.
+fn fail<R: Real>(last_iterations: &mut u32, iterations: u32, correction_squared: R) -> StepFailure {
+    *last_iterations = iterations;
     StepFailure::NotConverged {
         iterations,
         residual: correction_squared.sqrt().to_subset().unwrap_or(f64::NAN),
@@ -205,4 +201,162 @@ fn jacobian<R: Real, const D: usize, S: Scene<D>>(
         j.set_column(col, &((scene.acceleration(&shifted) - a) / step));
     }
     j
+}
+
+/// An implicit Runge-Kutta method given by its tableau `(A, b, c)`, applied
+/// to `y = (q, v)`, `y' = (v, a(q))`: the stages solve
+/// `V_i = v + h sum_j a_ij k_j`, `Q_i = q + h sum_j a_ij V_j`, `k_i = a(Q_i)`,
+/// and the step is `v' = v + h sum_i b_i k_i`, `q' = q + h sum_i b_i V_i`.
+///
+/// The stage equations are solved by fixed-point iteration on the stage
+/// accelerations `k`, starting from the previous step's (zero before the
+/// first step: no force evaluation to start). Each iteration evaluates every
+/// stage (`S` force evaluations, which is what `meta.force_evaluations`
+/// counts) and contracts by about `h^2 L rho(A^2)` (`L` the Lipschitz
+/// constant of `a`). The iteration ends like [`ImplicitMidpoint`]'s: once the stage positions move by less than
+/// [`ROUND_OFF_UNITS`] units of round-off and the moves stop shrinking. A
+/// solve that has not reached round-off after [`MAX_ITERATIONS`] iterations
+/// (a step too large for a contraction, there is no Newton fallback here) is
+/// a [`StepFailure::NotConverged`] and leaves the state unchanged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImplicitRk<const S: usize> {
+    /// The scheme's claims; `force_evaluations` is `S` (per iteration).
+    pub meta: SchemeMeta,
+    /// The Runge-Kutta matrix.
+    pub a: [[f64; S]; S],
+    /// The weights.
+    pub b: [f64; S],
+    /// The nodes (`c_i = sum_j a_ij`), for the tests of the order conditions.
+    pub c: [f64; S],
+}
+
+impl<const S: usize> ImplicitRk<S> {
+    /// The method with this tableau and these claims; `force_evaluations`
+    /// and `implicit` are set here (`S` evaluations per iteration).
+    pub const fn new(mut meta: SchemeMeta, a: [[f64; S]; S], b: [f64; S], c: [f64; S]) -> Self {
+        meta.force_evaluations = S as u32;
+        meta.implicit = true;
+        Self { meta, a, b, c }
+    }
+
+    /// The stage values `(Q_i, V_i)` given the stage accelerations `k`.
+    #[inline(always)]
+    fn stages<R: Real, const D: usize>(
+        &self,
+        q: &SVector<R, D>,
+        v: &SVector<R, D>,
+        k: &[SVector<R, D>; S],
+        h: R,
+    ) -> ([SVector<R, D>; S], [SVector<R, D>; S]) {
+        let mut vs = [*v; S];
+        let mut qs = [*q; S];
+        for (vi, row) in vs.iter_mut().zip(&self.a) {
+            for (kj, &aij) in k.iter().zip(row) {
+                if aij != 0.0 {
+                    *vi += kj * (h * R::of(aij));
+                }
+            }
+        }
+        for (qi, row) in qs.iter_mut().zip(&self.a) {
+            for (vj, &aij) in vs.iter().zip(row) {
+                if aij != 0.0 {
+                    *qi += vj * (h * R::of(aij));
+                }
+            }
+        }
+        (qs, vs)
+    }
+}
+
+/// What an implicit Runge-Kutta method carries between steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StageCarry<R: Real, const D: usize, const S: usize> {
+    /// The synchronised state.
+    pub state: State<D, R>,
+    /// The last step's stage accelerations, the next solve's starting guess.
+    pub k: [SVector<R, D>; S],
+    /// Iterations the last step took, converged or not (0 before the first).
+    pub last_iterations: u32,
+    /// Force evaluations spent by the solves since `start`, failed ones
+    /// included.
+    pub evaluations: u64,
+}
+
+impl<const S: usize> Scheme for ImplicitRk<S> {
+    type Carry<R: Real, const D: usize> = StageCarry<R, D, S>;
+
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    fn start<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        _: &P,
+        s: &State<D, R>,
+        _: R,
+    ) -> StageCarry<R, D, S> {
+        StageCarry {
+            state: *s,
+            k: [SVector::zeros(); S],
+            last_iterations: 0,
+            evaluations: 0,
+        }
+    }
+
+    fn step<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        scene: &P,
+        c: &mut StageCarry<R, D, S>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        let (q0, v0) = (c.state.q, c.state.v);
+        let units = R::of(ROUND_OFF_UNITS) * R::default_epsilon();
+        let mut k = c.k;
+        let (mut qs, _) = self.stages(&q0, &v0, &k, h);
+        let mut correction = R::zero();
+        let mut previous: Option<R> = None;
+        for iteration in 1..=MAX_ITERATIONS {
+            for i in 0..S {
+                k[i] = scene.acceleration(&qs[i]);
+            }
+            c.evaluations += S as u64;
+            let (next, vs) = self.stages(&q0, &v0, &k, h);
+            // how far the stage positions moved, against the rounding of
+            // the terms they are made of
+            correction = R::zero();
+            let mut size = R::zero();
+            for i in 0..S {
+                correction += (next[i] - qs[i]).norm_squared();
+                size += q0.norm_squared() + next[i].norm_squared();
+            }
+            qs = next;
+            // an overflowed or NaN iterate never converges (and an infinite
+            // correction would pass the test below against an infinite size)
+            if !(correction.is_finite() && size.is_finite()) {
+                return Err(fail(&mut c.last_iterations, iteration, correction));
+            }
+            let settled = correction == R::zero() || previous.is_some_and(|p| correction >= p);
+            if correction <= units * units * size && (settled || iteration == MAX_ITERATIONS) {
+                c.last_iterations = iteration;
+                let (mut dq, mut dv) = (SVector::<R, D>::zeros(), SVector::<R, D>::zeros());
+                for i in 0..S {
+                    dq += vs[i] * (h * R::of(self.b[i]));
+                    dv += k[i] * (h * R::of(self.b[i]));
+                }
+                c.state = State::new(q0 + dq, v0 + dv);
+                c.k = k;
+                return Ok(());
+            }
+            previous = Some(correction);
+        }
+        Err(fail(&mut c.last_iterations, MAX_ITERATIONS, correction))
+    }
+
+    fn state<R: Real, const D: usize>(&self, c: &StageCarry<R, D, S>, _: R) -> State<D, R> {
+        c.state
+    }
+
+    fn solver_evaluations<R: Real, const D: usize>(&self, c: &StageCarry<R, D, S>) -> Option<u64> {
+        Some(c.evaluations)
+    }
 }

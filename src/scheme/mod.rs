@@ -38,22 +38,26 @@ pub use black_box::{
 };
 pub use catalogue::{SchemeVisitor, TABLES, catalogue, scheme_ids, visit_scheme};
 pub use compensated::{
-    CompensatedSplitting, LeapfrogCompensated, SplittingCompensated, StaggeredCompensated,
-    StormerVerletCompensated, Summed, TwoStepCompensated, VELOCITY_VERLET_COMPENSATED,
+    Compensated, Kahan, LEAPFROG_COMPENSATED, Rounded, STORMER_VERLET_COMPENSATED, Summable,
+    Summation, Summed, VELOCITY_VERLET_COMPENSATED,
 };
 pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
 pub use euler::Euler;
-pub use implicit::{ImplicitMidpoint, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS};
+pub use implicit::{
+    ImplicitMidpoint, ImplicitRk, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS, StageCarry,
+};
 pub use multistep::{MultistepCarry, QUINLAN_TREMAINE8, SymmetricMultistep};
 pub use nystrom_rk::{Embedded, NystromStep, NystromTable};
 pub use nystrom_splitting::{
     BLANES_MOAN_SRKN11, MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5,
 };
 pub use nystrom_tables::{DPRKN6, DPRKN8, NYSTROM4};
-pub use runge_kutta::Rk4;
+pub use runge_kutta::{ExplicitRk, Rk4};
 pub use single_precision::{SingleCarry, SinglePrecision};
-pub use splitting::{EULER_CROMER, Flow, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET};
+pub use splitting::{
+    EULER_CROMER, Flow, KickDrift, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET,
+};
 pub use verlet::{Leapfrog, Staggered, StormerVerlet, TwoStep};
 
 use crate::scene::Scene;

@@ -189,7 +189,7 @@ impl<const K: usize> Scheme for SymmetricMultistep<K> {
             for _ in 0..m {
                 let _ = KAHAN_LI8.step(scene, &mut behind, -sub);
             }
-            q[i] = behind.state.q;
+            q[i] = behind.q;
             a[i] = behind.a;
         }
         let mut s = [SVector::zeros(); K];

@@ -1,8 +1,11 @@
-//! Explicit Runge-Kutta methods on the first-order system `(q, v)' = (v, a(q))`.
+//! Explicit Runge-Kutta methods on the first-order system `(q, v)' = (v, a(q))`:
+//! the classical RK4, written out, and any explicit method as data, one
+//! stepper over a Butcher tableau.
 
 use super::{OneStep, PhaseError, SchemeMeta, StepFailure};
 use crate::scene::Scene;
 use crate::state::{Real, State};
+use nalgebra::SVector;
 
 /// The classical fourth-order Runge-Kutta method (RK4) on `y = (q, v)`,
 /// `y' = f(y) = (v, a(q))`:
@@ -62,6 +65,89 @@ impl OneStep for Rk4 {
         let two = R::of(2.0);
         s.q += (k1q + (k2q + k3q) * two + k4q) * sixth;
         s.v += (k1v + (k2v + k3v) * two + k4v) * sixth;
+        Ok(())
+    }
+}
+
+/// An explicit Runge-Kutta method given by its Butcher tableau `(A, b, c)`,
+/// applied to the first-order system `y = (q, v)`, `y' = f(y) = (v, a(q))`:
+/// stage `i` is `Y_i = y + h sum_j a_ij k_j` with `k_j = f(Y_j)`, and the step
+/// `y' = y + h sum_i b_i k_i`. `A` is strictly lower triangular (checked
+/// when the constant is built by [`ExplicitRk::new`]); the system is
+/// autonomous, so `c` only documents the tableau (`c_i = sum_j a_ij`) and is
+/// used by the tests of the order conditions.
+///
+/// One force evaluation per stage; a zero entry costs nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExplicitRk<const S: usize> {
+    /// The scheme's claims; `force_evaluations` is `S`, set by `new`.
+    pub meta: SchemeMeta,
+    /// The Runge-Kutta matrix, strictly lower triangular.
+    pub a: [[f64; S]; S],
+    /// The weights.
+    pub b: [f64; S],
+    /// The nodes.
+    pub c: [f64; S],
+}
+
+impl<const S: usize> ExplicitRk<S> {
+    /// The method with this tableau and these claims (`force_evaluations`
+    /// replaced by the number of stages). Fails to compile if `a` is not
+    /// strictly lower triangular.
+    pub const fn new(mut meta: SchemeMeta, a: [[f64; S]; S], b: [f64; S], c: [f64; S]) -> Self {
+        let mut i = 0;
+        while i < S {
+            let mut j = i;
+            while j < S {
+                assert!(
+                    a[i][j] == 0.0,
+                    "an explicit tableau is strictly lower triangular"
+                );
+                j += 1;
+            }
+            i += 1;
+        }
+        meta.force_evaluations = S as u32;
+        Self { meta, a, b, c }
+    }
+}
+
+impl<const S: usize> OneStep for ExplicitRk<S> {
+    fn meta(&self) -> &SchemeMeta {
+        &self.meta
+    }
+
+    #[inline(always)]
+    fn advance<R: Real, const D: usize, P: Scene<D>>(
+        &self,
+        scene: &P,
+        s: &mut State<D, R>,
+        h: R,
+    ) -> Result<(), StepFailure> {
+        // the q-slopes are the stage velocities, the v-slopes accelerations
+        let mut kq = [SVector::<R, D>::zeros(); S];
+        let mut kv = [SVector::<R, D>::zeros(); S];
+        for i in 0..S {
+            let (mut q, mut v) = (s.q, s.v);
+            for j in 0..i {
+                if self.a[i][j] != 0.0 {
+                    let w = h * R::of(self.a[i][j]);
+                    q += kq[j] * w;
+                    v += kv[j] * w;
+                }
+            }
+            kq[i] = v;
+            kv[i] = scene.acceleration(&q);
+        }
+        let (mut dq, mut dv) = (SVector::<R, D>::zeros(), SVector::<R, D>::zeros());
+        for i in 0..S {
+            if self.b[i] != 0.0 {
+                dq += kq[i] * R::of(self.b[i]);
+                dv += kv[i] * R::of(self.b[i]);
+            }
+        }
+        s.q += dq * h;
+        s.v += dv * h;
         Ok(())
     }
 }

@@ -7,9 +7,11 @@
 //! Compositions of velocity Verlet (see [`super::composition`]) are turned into
 //! such tables at compile time and run by the same stepper.
 
-use super::{Scheme, SchemeMeta, StepFailure, VERLET_PHASE, WithAcceleration};
+use super::compensated::{Rounded, Summable, Summation, rounded_scheme};
+use super::{Scheme, SchemeMeta, StepFailure, VERLET_PHASE};
 use crate::scene::Scene;
 use crate::state::{Real, State};
+use nalgebra::SVector;
 
 /// Which flow a splitting applies first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,70 +105,87 @@ impl SplittingTable {
     }
 }
 
-impl Scheme for SplittingTable {
-    type Carry<R: Real, const D: usize> = WithAcceleration<R, D>;
+/// Position and velocity, summed by `S`, and the acceleration a
+/// first-same-as-last table reuses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KickDrift<R: Real, const D: usize, S: Summation = Rounded> {
+    /// Position.
+    pub q: S::Sum<R, D>,
+    /// Velocity.
+    pub v: S::Sum<R, D>,
+    /// `a(q)` at the rounded position, when the table reuses it.
+    pub a: SVector<R, D>,
+}
 
-    fn meta(&self) -> &SchemeMeta {
-        &self.meta
-    }
+impl Summable for SplittingTable {
+    type Carry<R: Real, const D: usize, S: Summation> = KickDrift<R, D, S>;
 
-    fn start<R: Real, const D: usize, S: Scene<D>>(
+    fn start_summed<S: Summation, R: Real, const D: usize, Sc: Scene<D>>(
         &self,
-        scene: &S,
+        scene: &Sc,
         state: &State<D, R>,
         _: R,
-    ) -> WithAcceleration<R, D> {
+    ) -> KickDrift<R, D, S> {
         let a = if self.reuses_acceleration() {
             scene.acceleration(&state.q)
         } else {
-            nalgebra::SVector::zeros()
+            SVector::zeros()
         };
-        WithAcceleration { state: *state, a }
+        KickDrift {
+            q: S::new(state.q),
+            v: S::new(state.v),
+            a,
+        }
     }
 
     #[inline(always)]
-    fn step<R: Real, const D: usize, S: Scene<D>>(
+    fn step_summed<S: Summation, R: Real, const D: usize, Sc: Scene<D>>(
         &self,
-        scene: &S,
-        c: &mut WithAcceleration<R, D>,
+        scene: &Sc,
+        c: &mut KickDrift<R, D, S>,
         h: R,
     ) -> Result<(), StepFailure> {
-        let (mut q, mut v) = (c.state.q, c.state.v);
         match self.first {
             Flow::Kick => {
                 let mut a = if self.reuses_acceleration() {
                     c.a
                 } else {
-                    scene.acceleration(&q)
+                    scene.acceleration(&S::value(&c.q))
                 };
                 for (i, &b) in self.kick.iter().enumerate() {
                     if i > 0 {
-                        a = scene.acceleration(&q);
+                        a = scene.acceleration(&S::value(&c.q));
                     }
-                    v += a * (h * R::of(b));
+                    S::add(&mut c.v, a * (h * R::of(b)));
                     if let Some(&d) = self.drift.get(i) {
-                        q += v * (h * R::of(d));
+                        S::add(&mut c.q, S::value(&c.v) * (h * R::of(d)));
                     }
                 }
                 c.a = a;
             }
             Flow::Drift => {
                 for (i, &d) in self.drift.iter().enumerate() {
-                    q += v * (h * R::of(d));
+                    S::add(&mut c.q, S::value(&c.v) * (h * R::of(d)));
                     if let Some(&b) = self.kick.get(i) {
-                        v += scene.acceleration(&q) * (h * R::of(b));
+                        let a = scene.acceleration(&S::value(&c.q));
+                        S::add(&mut c.v, a * (h * R::of(b)));
                     }
                 }
             }
         }
-        c.state = State::new(q, v);
         Ok(())
     }
 
-    fn state<R: Real, const D: usize>(&self, c: &WithAcceleration<R, D>, _: R) -> State<D, R> {
-        c.state
+    fn state_summed<S: Summation, R: Real, const D: usize>(
+        &self,
+        c: &KickDrift<R, D, S>,
+        _: R,
+    ) -> State<D, R> {
+        State::new(S::value(&c.q), S::value(&c.v))
     }
 }
+
+rounded_scheme!(SplittingTable, |table| &table.meta);
 
 /// Euler-Cromer (symplectic Euler): `v' = v + h a(q)`, then `q' = q + h v'`.
 pub const EULER_CROMER: SplittingTable = SplittingTable::new(

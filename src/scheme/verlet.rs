@@ -3,10 +3,10 @@
 //! Both are algebraically the same map as velocity Verlet once their velocities
 //! are synchronised; they differ in what they store and so in round-off.
 
+use super::compensated::{Rounded, Summable, Summation, rounded_scheme};
 use super::{Scheme, SchemeMeta, StepFailure, VERLET_PHASE};
 use crate::scene::Scene;
 use crate::state::{Real, State};
-use nalgebra::SVector;
 
 /// The original two-step Störmer-Verlet scheme: positions only,
 /// `q(n+1) = 2 q(n) - q(n-1) + h^2 a(q(n))`.
@@ -19,22 +19,23 @@ use nalgebra::SVector;
 #[derive(Clone, Copy, Debug, Default)]
 pub struct StormerVerlet;
 
-/// Two successive positions and the acceleration at the later one.
+/// Two successive positions, summed by `S`, and the acceleration at the
+/// later one.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TwoStep<R: Real, const D: usize> {
+pub struct TwoStep<R: Real, const D: usize, S: Summation = Rounded> {
     /// `q(n-1)`.
-    pub previous: SVector<R, D>,
+    pub previous: S::Sum<R, D>,
     /// `q(n)`.
-    pub current: SVector<R, D>,
-    /// `a(q(n))`.
-    pub a: SVector<R, D>,
+    pub current: S::Sum<R, D>,
+    /// `a(q(n))`, at the rounded position.
+    pub a: nalgebra::SVector<R, D>,
 }
 
-impl<R: Real, const D: usize> TwoStep<R, D> {
+impl<R: Real, const D: usize, S: Summation> TwoStep<R, D, S> {
     /// `q(n+1) = 2 q(n) - q(n-1) + h^2 a(q(n))`.
     #[inline(always)]
-    fn next(&self, h: R) -> SVector<R, D> {
-        (self.current * R::of(2.0) - self.previous) + self.a * (h * h)
+    fn next(&self, h: R) -> S::Sum<R, D> {
+        S::two_step(&self.current, &self.previous, self.a * (h * h))
     }
 }
 
@@ -53,43 +54,47 @@ impl StormerVerlet {
     };
 }
 
-impl Scheme for StormerVerlet {
-    type Carry<R: Real, const D: usize> = TwoStep<R, D>;
+impl Summable for StormerVerlet {
+    type Carry<R: Real, const D: usize, S: Summation> = TwoStep<R, D, S>;
 
-    fn meta(&self) -> &SchemeMeta {
-        &Self::META
-    }
-
-    fn start<R: Real, const D: usize, S: Scene<D>>(
+    fn start_summed<S: Summation, R: Real, const D: usize, Sc: Scene<D>>(
         &self,
-        scene: &S,
+        scene: &Sc,
         s: &State<D, R>,
         h: R,
-    ) -> TwoStep<R, D> {
+    ) -> TwoStep<R, D, S> {
         let a = scene.acceleration(&s.q);
+        let mut previous = S::new(s.q);
+        S::add(&mut previous, -(s.v * h));
+        S::add(&mut previous, a * (h * h * R::of(0.5)));
         TwoStep {
-            previous: s.q - s.v * h + a * (h * h * R::of(0.5)),
-            current: s.q,
+            previous,
+            current: S::new(s.q),
             a,
         }
     }
 
     #[inline(always)]
-    fn step<R: Real, const D: usize, S: Scene<D>>(
+    fn step_summed<S: Summation, R: Real, const D: usize, Sc: Scene<D>>(
         &self,
-        scene: &S,
-        c: &mut TwoStep<R, D>,
+        scene: &Sc,
+        c: &mut TwoStep<R, D, S>,
         h: R,
     ) -> Result<(), StepFailure> {
         let next = c.next(h);
         c.previous = c.current;
         c.current = next;
-        c.a = scene.acceleration(&next);
+        c.a = scene.acceleration(&S::value(&next));
         Ok(())
     }
 
-    fn state<R: Real, const D: usize>(&self, c: &TwoStep<R, D>, h: R) -> State<D, R> {
-        State::new(c.current, (c.next(h) - c.previous) / (h * R::of(2.0)))
+    fn state_summed<S: Summation, R: Real, const D: usize>(
+        &self,
+        c: &TwoStep<R, D, S>,
+        h: R,
+    ) -> State<D, R> {
+        let difference = S::difference(&c.next(h), &c.previous);
+        State::new(S::value(&c.current), difference / (h * R::of(2.0)))
     }
 }
 
@@ -101,15 +106,16 @@ impl Scheme for StormerVerlet {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Leapfrog;
 
-/// A whole-step position, the velocity half a step later, and `a(q)`.
+/// A whole-step position, the velocity half a step later, both summed by
+/// `S`, and `a(q)` at the rounded position.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Staggered<R: Real, const D: usize> {
+pub struct Staggered<R: Real, const D: usize, S: Summation = Rounded> {
     /// `q(n)`.
-    pub q: SVector<R, D>,
+    pub q: S::Sum<R, D>,
     /// `v(n + 1/2)`.
-    pub v_half: SVector<R, D>,
+    pub v_half: S::Sum<R, D>,
     /// `a(q(n))`.
-    pub a: SVector<R, D>,
+    pub a: nalgebra::SVector<R, D>,
 }
 
 impl Leapfrog {
@@ -127,41 +133,49 @@ impl Leapfrog {
     };
 }
 
-impl Scheme for Leapfrog {
-    type Carry<R: Real, const D: usize> = Staggered<R, D>;
+impl Summable for Leapfrog {
+    type Carry<R: Real, const D: usize, S: Summation> = Staggered<R, D, S>;
 
-    fn meta(&self) -> &SchemeMeta {
-        &Self::META
-    }
-
-    fn start<R: Real, const D: usize, S: Scene<D>>(
+    fn start_summed<S: Summation, R: Real, const D: usize, Sc: Scene<D>>(
         &self,
-        scene: &S,
+        scene: &Sc,
         s: &State<D, R>,
         h: R,
-    ) -> Staggered<R, D> {
+    ) -> Staggered<R, D, S> {
         let a = scene.acceleration(&s.q);
+        let mut v_half = S::new(s.v);
+        S::add(&mut v_half, a * (h * R::of(0.5)));
         Staggered {
-            q: s.q,
-            v_half: s.v + a * (h * R::of(0.5)),
+            q: S::new(s.q),
+            v_half,
             a,
         }
     }
 
     #[inline(always)]
-    fn step<R: Real, const D: usize, S: Scene<D>>(
+    fn step_summed<S: Summation, R: Real, const D: usize, Sc: Scene<D>>(
         &self,
-        scene: &S,
-        c: &mut Staggered<R, D>,
+        scene: &Sc,
+        c: &mut Staggered<R, D, S>,
         h: R,
     ) -> Result<(), StepFailure> {
-        c.q += c.v_half * h;
-        c.a = scene.acceleration(&c.q);
-        c.v_half += c.a * h;
+        S::add(&mut c.q, S::value(&c.v_half) * h);
+        c.a = scene.acceleration(&S::value(&c.q));
+        S::add(&mut c.v_half, c.a * h);
         Ok(())
     }
 
-    fn state<R: Real, const D: usize>(&self, c: &Staggered<R, D>, h: R) -> State<D, R> {
-        State::new(c.q, c.v_half - c.a * (h * R::of(0.5)))
+    fn state_summed<S: Summation, R: Real, const D: usize>(
+        &self,
+        c: &Staggered<R, D, S>,
+        h: R,
+    ) -> State<D, R> {
+        State::new(
+            S::value(&c.q),
+            S::plus(&c.v_half, -(c.a * (h * R::of(0.5)))),
+        )
     }
 }
+
+rounded_scheme!(StormerVerlet, |_scheme| &StormerVerlet::META);
+rounded_scheme!(Leapfrog, |_scheme| &Leapfrog::META);

@@ -17,12 +17,12 @@
 //! ...`, so the composition's is `h (sum w) X1 + h^3 (sum w^3) X3 + ...`
 //! (see [`stepladder::scheme::VerletComposition`]).
 
-use super::correct::{DORMAND_PRINCE5, ExplicitRk, ImplicitRk, RUTH3, RUTH3_KICKS, TRAPEZOIDAL};
+use super::correct::{DORMAND_PRINCE5, RUTH3, RUTH3_KICKS, TRAPEZOIDAL};
 use stepladder::scene::Scene;
 use stepladder::scheme::{
-    EULER_CROMER, FOREST_RUTH, Flow, ImplicitMidpoint, KAHAN_LI8, Leapfrog, OneStep, Rk4, Scheme,
-    SchemeMeta, SplittingTable, StepFailure, StormerVerlet, VELOCITY_VERLET, VerletComposition,
-    YOSHIDA6,
+    EULER_CROMER, ExplicitRk, FOREST_RUTH, Flow, ImplicitMidpoint, ImplicitRk, KAHAN_LI8, Leapfrog,
+    OneStep, Rk4, Scheme, SchemeMeta, SplittingTable, StepFailure, StormerVerlet, VELOCITY_VERLET,
+    VerletComposition, YOSHIDA6,
 };
 use stepladder::state::{Real, State};
 

@@ -5,105 +5,19 @@
 //! trapezoidal rule, Lobatto IIIA) or both (Gauss), and two more compositions
 //! of velocity Verlet (Suzuki's fractal and Yoshida's recursive ones).
 //!
-//! Every family is one generic stepper over a coefficient table:
-//! [`ExplicitRk`] over a Butcher tableau, [`Nystrom`] over a
-//! Runge-Kutta-Nyström tableau, [`ImplicitRk`] over an implicit tableau, and
-//! the catalogue's [`SplittingTable`] for splittings and compositions. The
+//! Every entry here is a coefficient table and its claims, run by the core's
+//! table-driven steppers: [`ExplicitRk`] for a Butcher tableau,
+//! [`NystromTable`] for a Runge-Kutta-Nyström tableau, [`ImplicitRk`] for an
+//! implicit tableau, and [`SplittingTable`] for splittings and compositions. The
 //! tests check every tableau against its order conditions
 //! ([`stepladder::conditions`]: Butcher trees, the Nyström conditions, and
 //! for splittings the Taylor series of a product of matrix exponentials) and
 //! every scheme's order on the harmonic oscillator.
 
-use nalgebra::SVector;
-use stepladder::scene::Scene;
 use stepladder::scheme::{
-    BlackBox, FOREST_RUTH, Flow, Force, MAX_ITERATIONS, OneStep, ROUND_OFF_UNITS, Scheme,
-    SchemeMeta, SplittingTable, Stateful, StepFailure, VELOCITY_VERLET, VerletComposition,
+    BlackBox, ExplicitRk, FOREST_RUTH, Flow, Force, ImplicitRk, NystromTable, SchemeMeta,
+    SplittingTable, Stateful, VELOCITY_VERLET, VerletComposition,
 };
-use stepladder::state::{Real, State};
-
-/// An explicit Runge-Kutta method given by its Butcher tableau `(A, b, c)`,
-/// applied to the first-order system `y = (q, v)`, `y' = f(y) = (v, a(q))`:
-/// stage `i` is `Y_i = y + h sum_j a_ij k_j` with `k_j = f(Y_j)`, and the step
-/// `y' = y + h sum_i b_i k_i`. `A` is strictly lower triangular (checked
-/// when the constant is built by [`ExplicitRk::new`]); the system is
-/// autonomous, so `c` only documents the tableau (`c_i = sum_j a_ij`) and is
-/// used by the tests of the order conditions.
-///
-/// One force evaluation per stage; a zero entry costs nothing.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ExplicitRk<const S: usize> {
-    /// The scheme's claims; `force_evaluations` is `S`, set by `new`.
-    pub meta: SchemeMeta,
-    /// The Runge-Kutta matrix, strictly lower triangular.
-    pub a: [[f64; S]; S],
-    /// The weights.
-    pub b: [f64; S],
-    /// The nodes.
-    pub c: [f64; S],
-}
-
-impl<const S: usize> ExplicitRk<S> {
-    /// The method with this tableau and these claims (`force_evaluations`
-    /// replaced by the number of stages). Fails to compile if `a` is not
-    /// strictly lower triangular.
-    pub const fn new(mut meta: SchemeMeta, a: [[f64; S]; S], b: [f64; S], c: [f64; S]) -> Self {
-        let mut i = 0;
-        while i < S {
-            let mut j = i;
-            while j < S {
-                assert!(
-                    a[i][j] == 0.0,
-                    "an explicit tableau is strictly lower triangular"
-                );
-                j += 1;
-            }
-            i += 1;
-        }
-        meta.force_evaluations = S as u32;
-        Self { meta, a, b, c }
-    }
-}
-
-impl<const S: usize> OneStep for ExplicitRk<S> {
-    fn meta(&self) -> &SchemeMeta {
-        &self.meta
-    }
-
-    #[inline(always)]
-    fn advance<R: Real, const D: usize, P: Scene<D>>(
-        &self,
-        scene: &P,
-        s: &mut State<D, R>,
-        h: R,
-    ) -> Result<(), StepFailure> {
-        // the q-slopes are the stage velocities, the v-slopes accelerations
-        let mut kq = [SVector::<R, D>::zeros(); S];
-        let mut kv = [SVector::<R, D>::zeros(); S];
-        for i in 0..S {
-            let (mut q, mut v) = (s.q, s.v);
-            for j in 0..i {
-                if self.a[i][j] != 0.0 {
-                    let w = h * R::of(self.a[i][j]);
-                    q += kq[j] * w;
-                    v += kv[j] * w;
-                }
-            }
-            kq[i] = v;
-            kv[i] = scene.acceleration(&q);
-        }
-        let (mut dq, mut dv) = (SVector::<R, D>::zeros(), SVector::<R, D>::zeros());
-        for i in 0..S {
-            if self.b[i] != 0.0 {
-                dq += kq[i] * R::of(self.b[i]);
-                dv += kv[i] * R::of(self.b[i]);
-            }
-        }
-        s.q += dq * h;
-        s.v += dv * h;
-        Ok(())
-    }
-}
 
 /// Neither symplectic nor symmetric, explicit, and no hand-derived phase
 /// error: what every explicit Runge-Kutta method of this module claims
@@ -229,61 +143,6 @@ pub const DORMAND_PRINCE5: ExplicitRk<6> = ExplicitRk::new(
     [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0],
 );
 
-/// An explicit Runge-Kutta-Nyström method for `q'' = a(q)`, given by nodes
-/// `c`, a strictly lower triangular matrix `a` (the `abar` of the literature)
-/// and weights `b_bar` (positions) and `b` (velocities):
-/// `k_i = a(q + c_i h v + h^2 sum_j a_ij k_j)`,
-/// `q' = q + h v + h^2 sum_i b_bar_i k_i`, `v' = v + h sum_i b_i k_i`.
-///
-/// One force evaluation per stage.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Nystrom<const S: usize> {
-    /// The scheme's claims.
-    pub meta: SchemeMeta,
-    /// The nodes.
-    pub c: [f64; S],
-    /// The stage matrix for positions, strictly lower triangular.
-    pub a: [[f64; S]; S],
-    /// The position weights.
-    pub b_bar: [f64; S],
-    /// The velocity weights.
-    pub b: [f64; S],
-}
-
-impl<const S: usize> OneStep for Nystrom<S> {
-    fn meta(&self) -> &SchemeMeta {
-        &self.meta
-    }
-
-    #[inline(always)]
-    fn advance<R: Real, const D: usize, P: Scene<D>>(
-        &self,
-        scene: &P,
-        s: &mut State<D, R>,
-        h: R,
-    ) -> Result<(), StepFailure> {
-        let h2 = h * h;
-        let mut k = [SVector::<R, D>::zeros(); S];
-        for i in 0..S {
-            let mut q = s.q + s.v * (h * R::of(self.c[i]));
-            for (kj, &aij) in k[..i].iter().zip(&self.a[i]) {
-                if aij != 0.0 {
-                    q += kj * (h2 * R::of(aij));
-                }
-            }
-            k[i] = scene.acceleration(&q);
-        }
-        let (mut dq, mut dv) = (SVector::<R, D>::zeros(), SVector::<R, D>::zeros());
-        for ((ki, &bb), &b) in k.iter().zip(&self.b_bar).zip(&self.b) {
-            dq += ki * R::of(bb);
-            dv += ki * R::of(b);
-        }
-        s.q += s.v * h + dq * h2;
-        s.v += dv * h;
-        Ok(())
-    }
-}
-
 /// The classical fourth-order Runge-Kutta-Nyström method with three force
 /// evaluations: `c = (0, 1/2, 1)`, `a21 = 1/8`, `a31 = 0`, `a32 = 1/2`,
 /// `b_bar = (1/6, 1/3, 0)`, `b = (1/6, 2/3, 1/6)`:
@@ -298,23 +157,24 @@ impl<const S: usize> OneStep for Nystrom<S> {
 /// for a symplectic Runge-Kutta-Nyström method, `b_bar_i = b_i (1 - c_i)`
 /// holds but `b_i (b_bar_j - a_ij) = b_j (b_bar_i - a_ji)` fails at
 /// `(i, j) = (1, 2)` (`1/18` against `1/36`).
-pub const RKN4: Nystrom<3> = Nystrom {
-    meta: SchemeMeta {
+pub const RKN4: NystromTable<3> = NystromTable::new(
+    SchemeMeta {
         id: "rkn4",
         name: "classical Runge-Kutta-Nystrom method (order 4, 3 stages)",
         order: 4,
         symplectic: false,
         symmetric: false,
-        force_evaluations: 3,
+        force_evaluations: 0, // derived by `new`
         implicit: false,
         reference: "E. J. Nystrom, Acta Soc. Sci. Fenn. 50, No. 13 (1925); E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential Equations I (1993), II.14",
         phase_error: None,
     },
-    c: [0.0, 0.5, 1.0],
-    a: [[0.0, 0.0, 0.0], [1.0 / 8.0, 0.0, 0.0], [0.0, 0.5, 0.0]],
-    b_bar: [1.0 / 6.0, 1.0 / 3.0, 0.0],
-    b: [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
-};
+    [0.0, 0.5, 1.0],
+    [[0.0, 0.0, 0.0], [1.0 / 8.0, 0.0, 0.0], [0.0, 0.5, 0.0]],
+    [1.0 / 6.0, 1.0 / 3.0, 0.0],
+    [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0],
+    None,
+);
 
 /// Ruth's third-order symplectic method (1983), the first symplectic
 /// integrator beyond second order: kick-drift three times,
@@ -425,178 +285,6 @@ pub const YOSHIDA6_RECURSIVE: SplittingTable = YOSHIDA6_RECURSIVE_STAGES.table(S
     reference: "H. Yoshida, Phys. Lett. A 150, 262 (1990), section 4 (the recursive triple jump); M. Suzuki, Phys. Lett. A 146, 319 (1990)",
     phase_error: None,
 });
-
-/// An implicit Runge-Kutta method given by its tableau `(A, b, c)`, applied
-/// to `y = (q, v)`, `y' = (v, a(q))`: the stages solve
-/// `V_i = v + h sum_j a_ij k_j`, `Q_i = q + h sum_j a_ij V_j`, `k_i = a(Q_i)`,
-/// and the step is `v' = v + h sum_i b_i k_i`, `q' = q + h sum_i b_i V_i`.
-///
-/// The stage equations are solved by fixed-point iteration on the stage
-/// accelerations `k`, starting from the previous step's (zero before the
-/// first step: no force evaluation to start). Each iteration evaluates every
-/// stage (`S` force evaluations, which is what `meta.force_evaluations`
-/// counts) and contracts by about `h^2 L rho(A^2)` (`L` the Lipschitz
-/// constant of `a`). The iteration ends like the catalogue's implicit
-/// midpoint rule: once the stage positions move by less than
-/// [`ROUND_OFF_UNITS`] units of round-off and the moves stop shrinking. A
-/// solve that has not reached round-off after [`MAX_ITERATIONS`] iterations
-/// (a step too large for a contraction, there is no Newton fallback here) is
-/// a [`StepFailure::NotConverged`] and leaves the state unchanged.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ImplicitRk<const S: usize> {
-    /// The scheme's claims; `force_evaluations` is `S` (per iteration).
-    pub meta: SchemeMeta,
-    /// The Runge-Kutta matrix.
-    pub a: [[f64; S]; S],
-    /// The weights.
-    pub b: [f64; S],
-    /// The nodes (`c_i = sum_j a_ij`), for the tests of the order conditions.
-    pub c: [f64; S],
-}
-
-impl<const S: usize> ImplicitRk<S> {
-    /// The method with this tableau and these claims; `force_evaluations`
-    /// and `implicit` are set here (`S` evaluations per iteration).
-    pub const fn new(mut meta: SchemeMeta, a: [[f64; S]; S], b: [f64; S], c: [f64; S]) -> Self {
-        meta.force_evaluations = S as u32;
-        meta.implicit = true;
-        Self { meta, a, b, c }
-    }
-
-    /// The stage values `(Q_i, V_i)` given the stage accelerations `k`.
-    #[inline(always)]
-    fn stages<R: Real, const D: usize>(
-        &self,
-        q: &SVector<R, D>,
-        v: &SVector<R, D>,
-        k: &[SVector<R, D>; S],
-        h: R,
-    ) -> ([SVector<R, D>; S], [SVector<R, D>; S]) {
-        let mut vs = [*v; S];
-        let mut qs = [*q; S];
-        for (vi, row) in vs.iter_mut().zip(&self.a) {
-            for (kj, &aij) in k.iter().zip(row) {
-                if aij != 0.0 {
-                    *vi += kj * (h * R::of(aij));
-                }
-            }
-        }
-        for (qi, row) in qs.iter_mut().zip(&self.a) {
-            for (vj, &aij) in vs.iter().zip(row) {
-                if aij != 0.0 {
-                    *qi += vj * (h * R::of(aij));
-                }
-            }
-        }
-        (qs, vs)
-    }
-}
-
-/// What an implicit Runge-Kutta method carries between steps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StageCarry<R: Real, const D: usize, const S: usize> {
-    /// The synchronised state.
-    pub state: State<D, R>,
-    /// The last step's stage accelerations, the next solve's starting guess.
-    pub k: [SVector<R, D>; S],
-    /// Iterations the last step took, converged or not (0 before the first).
-    pub last_iterations: u32,
-    /// Force evaluations spent by the solves since `start`, failed ones
-    /// included.
-    pub evaluations: u64,
-}
-
-impl<const S: usize> Scheme for ImplicitRk<S> {
-    type Carry<R: Real, const D: usize> = StageCarry<R, D, S>;
-
-    fn meta(&self) -> &SchemeMeta {
-        &self.meta
-    }
-
-    fn start<R: Real, const D: usize, P: Scene<D>>(
-        &self,
-        _: &P,
-        s: &State<D, R>,
-        _: R,
-    ) -> StageCarry<R, D, S> {
-        StageCarry {
-            state: *s,
-            k: [SVector::zeros(); S],
-            last_iterations: 0,
-            evaluations: 0,
-        }
-    }
-
-    fn step<R: Real, const D: usize, P: Scene<D>>(
-        &self,
-        scene: &P,
-        c: &mut StageCarry<R, D, S>,
-        h: R,
-    ) -> Result<(), StepFailure> {
-        let (q0, v0) = (c.state.q, c.state.v);
-        let units = R::of(ROUND_OFF_UNITS) * R::default_epsilon();
-        let mut k = c.k;
-        let (mut qs, _) = self.stages(&q0, &v0, &k, h);
-        let mut correction = R::zero();
-        let mut previous: Option<R> = None;
-        for iteration in 1..=MAX_ITERATIONS {
-            for i in 0..S {
-                k[i] = scene.acceleration(&qs[i]);
-            }
-            c.evaluations += S as u64;
-            let (next, vs) = self.stages(&q0, &v0, &k, h);
-            // how far the stage positions moved, against the rounding of
-            // the terms they are made of
-            correction = R::zero();
-            let mut size = R::zero();
-            for i in 0..S {
-                correction += (next[i] - qs[i]).norm_squared();
-                size += q0.norm_squared() + next[i].norm_squared();
-            }
-            qs = next;
-            // an overflowed or NaN iterate never converges (and an infinite
-            // correction would pass the test below against an infinite size)
-            if !(correction.is_finite() && size.is_finite()) {
-                return Err(fail(c, iteration, correction));
-            }
-            let settled = correction == R::zero() || previous.is_some_and(|p| correction >= p);
-            if correction <= units * units * size && (settled || iteration == MAX_ITERATIONS) {
-                c.last_iterations = iteration;
-                let (mut dq, mut dv) = (SVector::<R, D>::zeros(), SVector::<R, D>::zeros());
-                for i in 0..S {
-                    dq += vs[i] * (h * R::of(self.b[i]));
-                    dv += k[i] * (h * R::of(self.b[i]));
-                }
-                c.state = State::new(q0 + dq, v0 + dv);
-                c.k = k;
-                return Ok(());
-            }
-            previous = Some(correction);
-        }
-        Err(fail(c, MAX_ITERATIONS, correction))
-    }
-
-    fn state<R: Real, const D: usize>(&self, c: &StageCarry<R, D, S>, _: R) -> State<D, R> {
-        c.state
-    }
-
-    fn solver_evaluations<R: Real, const D: usize>(&self, c: &StageCarry<R, D, S>) -> Option<u64> {
-        Some(c.evaluations)
-    }
-}
-
-/// Records a failed solve (the state stays as it was) and describes it.
-fn fail<R: Real, const D: usize, const S: usize>(
-    c: &mut StageCarry<R, D, S>,
-    iterations: u32,
-    correction_squared: R,
-) -> StepFailure {
-    c.last_iterations = iterations;
-    StepFailure::NotConverged {
-        iterations,
-        residual: correction_squared.sqrt().to_subset().unwrap_or(f64::NAN),
-    }
-}
 
 /// The implicit trapezoidal rule, `y' = y + h/2 (f(y) + f(y'))`: the
 /// two-stage Lobatto IIIA method, `A = [[0, 0], [1/2, 1/2]]`, `b = (1/2,

@@ -31,7 +31,7 @@ use stepladder::internals::run::integrate;
 use stepladder::scene::{AnyScene, Counted, OuterSolarSystem, Pleiades, Scene, SceneVisitor};
 use stepladder::scheme::{AdaptiveIntegrator, RunEnd};
 use stepladder::scheme::{
-    CompensatedSplitting, KAHAN_LI8, Scheme, SchemeVisitor, scheme_ids, visit_scheme,
+    Compensated, KAHAN_LI8, Scheme, SchemeVisitor, SplittingTable, scheme_ids, visit_scheme,
 };
 use stepladder::state::State;
 
@@ -148,9 +148,9 @@ pub fn pleiades_published_accuracy(stars: &Pleiades) -> f64 {
 /// Kahan and Li's eighth-order composition with compensated sums: the
 /// reference's method, whose round-off over thousands of steps stays near a
 /// unit of the states.
-const KAHAN_LI8_COMPENSATED: CompensatedSplitting = CompensatedSplitting {
+pub const KAHAN_LI8_COMPENSATED: Compensated<SplittingTable> = Compensated {
     meta: KAHAN_LI8.meta,
-    table: &KAHAN_LI8,
+    plain: KAHAN_LI8,
 };
 
 /// The state the N-body contenders are judged against, and how well it is

@@ -13,9 +13,10 @@ use stepladder::internals::run::integrate;
 use stepladder::internals::tolerance::SCENE_TOLERANCE;
 use stepladder::nalgebra::SVector;
 use stepladder::scene::{Invariant, OuterSolarSystem, Pleiades, Scene, SceneMeta};
-use stepladder::scheme::{CompensatedSplitting, KAHAN_LI8, Rk4, Scheme, VELOCITY_VERLET, YOSHIDA6};
+use stepladder::scheme::{KAHAN_LI8, Rk4, Scheme, VELOCITY_VERLET, YOSHIDA6};
 use stepladder::state::{Real, State};
 use stepladder::study::Verdict;
+use stepladder_lab::suite::race::KAHAN_LI8_COMPENSATED;
 use stepladder_lab::suite::race::{
     RACE_TARGETS, pleiades_published_accuracy, pleiades_quadruple_precision,
 };
@@ -104,14 +105,6 @@ fn last_state<M: Scheme, S: Scene<D>, const D: usize>(
     assert!(outcome.completed(), "{outcome}");
     last
 }
-
-/// Kahan-Li's eighth-order composition with compensated position and
-/// velocity sums: the same map in exact arithmetic, its round-off reduced by
-/// the step's size relative to the motion.
-const KAHAN_LI8_COMPENSATED: CompensatedSplitting = CompensatedSplitting {
-    meta: KAHAN_LI8.meta,
-    table: &KAHAN_LI8,
-};
 
 /// The quadruple-precision state at `t = 3` (see
 /// [`stepladder_lab::suite::race::PLEIADES_QUADRUPLE_PRECISION`]) as a

@@ -5,12 +5,11 @@
 use stepladder::internals::cost::work_points::Reach;
 use stepladder::scene::{OuterSolarSystem, Pleiades, Scene};
 use stepladder::scheme::AdaptiveIntegrator;
-use stepladder::scheme::{CompensatedSplitting, KAHAN_LI8};
 use stepladder::state::State;
 use stepladder_lab::peer::{PEERS, VERNER98};
 use stepladder_lab::suite::race::{
-    KEPLER_SCENES, NBODY_FIRST_STEPS, NBODY_MAX_EVALUATIONS, NBODY_SCENES, NBODY_TOLERANCES,
-    OUTER_CHECK_TOLERANCE, OUTER_REFERENCE_STEPS, RACE_TARGETS, REFERENCE_SHARE,
+    KAHAN_LI8_COMPENSATED, KEPLER_SCENES, NBODY_FIRST_STEPS, NBODY_MAX_EVALUATIONS, NBODY_SCENES,
+    NBODY_TOLERANCES, OUTER_CHECK_TOLERANCE, OUTER_REFERENCE_STEPS, RACE_TARGETS, REFERENCE_SHARE,
     pleiades_published_accuracy,
 };
 
@@ -96,10 +95,6 @@ fn the_pleiades_reference_is_the_published_state_and_judges_every_target() {
 /// is below a tenth of the smallest target.
 #[test]
 fn the_outer_solar_system_reference_is_two_independent_methods_agreeing() {
-    const COMPOSITION: CompensatedSplitting = CompensatedSplitting {
-        meta: KAHAN_LI8.meta,
-        table: &KAHAN_LI8,
-    };
     let planets = OuterSolarSystem::default();
     let record = &super::common::suite().race.nbody[1];
     let reference = &record.reference;
@@ -108,7 +103,7 @@ fn the_outer_solar_system_reference_is_two_independent_methods_agreeing() {
     let end = |steps: u64| {
         let mut last = planets.initial();
         let outcome = stepladder::internals::run::integrate(
-            &COMPOSITION,
+            &KAHAN_LI8_COMPENSATED,
             &planets,
             &planets.initial(),
             reference.t_end / steps as f64,

@@ -11,7 +11,7 @@ use stepladder::internals::tolerance::{
     TWO_STEP_FLOOR_RATIO, reverse_tolerance_ulps,
 };
 use stepladder::scene::{Harmonic, KeplerCircular, Scene};
-use stepladder::scheme::{Scheme, StormerVerlet, StormerVerletCompensated};
+use stepladder::scheme::{STORMER_VERLET_COMPENSATED, Scheme, StormerVerlet};
 
 /// Every claim of a compensated variant, on the oscillator and the orbit:
 /// order, energy, symplecticity, time symmetry (the public guards, which
@@ -85,15 +85,15 @@ fn where_nothing_is_rounded_the_two_step_forms_agree_bit_for_bit() {
     let osc = Harmonic::default();
     let h = 0.125;
     let mut a = StormerVerlet.start(&osc, &osc.initial(), h);
-    let mut b = StormerVerletCompensated.start(&osc, &osc.initial(), h);
+    let mut b = STORMER_VERLET_COMPENSATED.start(&osc, &osc.initial(), h);
     for _ in 0..4 {
         StormerVerlet.step(&osc, &mut a, h).unwrap();
-        StormerVerletCompensated.step(&osc, &mut b, h).unwrap();
+        STORMER_VERLET_COMPENSATED.step(&osc, &mut b, h).unwrap();
         assert_eq!(a.current, b.current.value);
         assert_eq!(b.current.low[0], 0.0);
         assert_eq!(
             StormerVerlet.state(&a, h),
-            StormerVerletCompensated.state(&b, h)
+            STORMER_VERLET_COMPENSATED.state(&b, h)
         );
     }
 }

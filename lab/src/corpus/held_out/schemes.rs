@@ -1,4 +1,15 @@
 //! The held-out batch's schemes, correct and broken.
+//!
+//! Its Runge-Kutta, Runge-Kutta-Nyström and splitting steppers ([`ButcherRk`],
+//! [`Rkn`], [`Splitting`]) repeat, on purpose, what the core's table-driven
+//! steppers ([`stepladder::scheme::ExplicitRk`],
+//! [`stepladder::scheme::NystromTable`], [`stepladder::scheme::SplittingTable`])
+//! already do. Independence is the point of this batch: its correct entries
+//! must pass on code the harness was never run with while its rules were
+//! written, so a fault shared by a core stepper and the studies that judge
+//! it cannot make a wrong scheme look right here. The other batches
+//! ([`super::super::correct`], [`super::super::broken`]) are tables run by
+//! the core's steppers.
 
 use nalgebra::SVector;
 use stepladder::scene::Scene;

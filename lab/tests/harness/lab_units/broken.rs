@@ -2,9 +2,10 @@
 //! behaviour measured.
 
 use stepladder::scene::Scene;
+use stepladder::scheme::ExplicitRk;
 use stepladder::scheme::{Flow, OneStep, Rk4, Scheme, SplittingTable, VELOCITY_VERLET};
 use stepladder::state::State;
-use stepladder_lab::corpus::correct::{DORMAND_PRINCE5, ExplicitRk};
+use stepladder_lab::corpus::correct::DORMAND_PRINCE5;
 
 use super::correct::{
     det_defect, oscillator_error, oscillator_order, return_error, step_jacobian, steps_for, sums,
