@@ -689,6 +689,15 @@ mod tests {
             "{}",
             j.reason
         );
+        // the local orders named are the two beside the rung, the one at it
+        // and the one after it
+        let beside = |i: usize| format!("{:.2}", rungs[i].local_order.expect("a local order"));
+        let sides = format!(
+            "local orders {} and {}",
+            beside(outlier),
+            beside(outlier + 1)
+        );
+        assert!(j.reason.contains(&sides), "{sides} in {}", j.reason);
         // round-off is indeed far below the error at every rung
         assert!(
             rungs
@@ -721,5 +730,172 @@ mod tests {
             j.reason
         );
         assert!(j.advice.expect("advice").contains("shorten t_end"));
+    }
+
+    /// `rungs` with these local orders set from rung `first` on.
+    fn with_locals(mut rungs: Vec<Rung>, first: usize, locals: &[f64]) -> Vec<Rung> {
+        for (r, &l) in rungs[first..].iter_mut().zip(locals) {
+            r.local_order = Some(l);
+        }
+        rungs
+    }
+
+    /// Local orders 1, 1.5, 1.75 rise by steps that halve: the geometric
+    /// sequence they start ends at 1.75 + 0.25 (0.5 / 0.5) = 2, exactly the
+    /// claim, so a second-order claim is still being approached. Falling
+    /// steps or a limit below the claim say nothing of the kind.
+    #[test]
+    fn local_orders_rising_by_halving_steps_are_heading_for_their_aitken_limit() {
+        let rising = with_locals(ladder(|h| h * h), 1, &[0.5, 1.0, 1.5, 1.75]);
+        let limit = still_rising_to(2.0, &rising, 0, 4).expect("still rising");
+        assert!((limit - 2.0).abs() < 1e-12, "{limit}");
+        // heading for 2, which is below a claim of 3 less its tolerance
+        assert_eq!(still_rising_to(3.0, &rising, 0, 4), None);
+        // the same steps falling are no rise
+        let falling = with_locals(ladder(|h| h * h), 1, &[2.5, 2.0, 1.5, 1.25]);
+        assert_eq!(still_rising_to(2.0, &falling, 0, 4), None);
+    }
+
+    /// Where three local orders are heading, in closed form: steps of 0.5
+    /// and 0.25 extrapolate to 4 (Aitken); steps within half the plateau
+    /// tolerance are a plateau at their median; steps of 0.9 and 0.6 of the
+    /// tolerance, beyond that half, still extrapolate (to `l3 + 1.2 tol`);
+    /// steps that grow say nothing.
+    #[test]
+    fn the_limit_of_three_local_orders_is_aitken_s_or_their_plateau() {
+        let limit = local_order_limit(&[3.0, 3.5, 3.75]).expect("a limit");
+        assert!((limit - 4.0).abs() < 1e-12, "{limit}");
+        let tol = tolerance::plateau_tolerance(4.0);
+        let plateau = [4.0, 4.0 + 0.4 * tol, 4.0 + 0.2 * tol];
+        assert_eq!(local_order_limit(&plateau), Some(4.0 + 0.2 * tol));
+        let l3 = 4.0 + 1.5 * tol;
+        let beyond = local_order_limit(&[4.0, 4.0 + 0.9 * tol, l3]).expect("a limit");
+        assert!(
+            (beyond - (l3 + 1.2 * tol)).abs() < 1e-12,
+            "{beyond} against {}",
+            l3 + 1.2 * tol
+        );
+        assert_eq!(local_order_limit(&[3.0, 3.25, 3.75]), None);
+        // falling ever faster: at most the last
+        assert_eq!(local_order_limit(&[3.0, 2.9, 2.5]), Some(2.5));
+    }
+
+    /// A fourth-order claim whose local orders reach 4 on rungs 3 and 4 and
+    /// settle at 3 from rung 5 on: an order reduction from 4 to 3 setting in
+    /// after rung 4, the last rung on the claim. Local orders on the claim
+    /// outside the clean rungs `a..=b` are not read.
+    #[test]
+    fn local_orders_that_settle_below_the_claim_are_an_order_reduction() {
+        let locals = [4.0, 4.0, 3.0, 3.0, 3.0, 3.0, 3.0, 3.0];
+        let rungs = with_locals(ladder(|h| h.powi(4)), 3, &locals);
+        let found = order_reduction(4.0, &rungs, 2, 10).expect("a reduction");
+        assert_eq!(found.from, 4.0);
+        assert_eq!(found.to, 3.0);
+        assert_eq!(found.sets_in_at, rungs[4].h);
+        // the rungs on the claim coarser than the clean ones
+        assert_eq!(order_reduction(4.0, &rungs, 4, 10), None);
+    }
+
+    /// `rungs` at these steps with errors `h^2`, the clean ones `a..=b` and
+    /// the rung after `b` on the round-off floor.
+    fn cut_at(hs: &[f64], a: usize, b: usize) -> (Vec<Rung>, Analysis) {
+        let mut rungs = ladder(|h| h * h);
+        rungs.truncate(hs.len());
+        for (r, &h) in rungs.iter_mut().zip(hs) {
+            r.h = h;
+            r.error = Some(h * h);
+            r.round_off_bound = Some(1e-3 * h * h);
+        }
+        rungs[b + 1].round_off_bound = rungs[b + 1].error;
+        let mut dropped = vec![None; hs.len()];
+        dropped[b + 1] = Some(DropReason::RoundOff);
+        let choice = crate::maths::window::WindowChoice {
+            dropped,
+            clean: Some((a, b)),
+            window: None,
+            median_local_order: None,
+        };
+        let analysis = Analysis {
+            choice,
+            fit: None,
+            trend_systematic: None,
+            ci95: None,
+        };
+        (rungs, analysis)
+    }
+
+    /// Round-off cuts the window short when the clean rungs are too few in
+    /// number or in halvings: seven rungs over 1.5 halvings are too few
+    /// (enough rungs, not enough halvings), seven over exactly
+    /// [`MIN_WINDOW_HALVINGS`] are enough.
+    #[test]
+    fn round_off_cuts_a_window_short_of_rungs_or_of_halvings() {
+        let quarter: Vec<f64> = (0..8).map(|k| 2f64.powf(-(k as f64) / 4.0)).collect();
+        let (rungs, analysis) = cut_at(&quarter, 0, 6);
+        let cut = cut_by_round_off(&rungs, &analysis).expect("cut short");
+        assert!(cut.contains("7 rungs over 1.5 halvings"), "{cut}");
+        let two = [1.0, 0.9, 0.8, 0.6, 0.4, 0.3, 0.25, 0.2];
+        let (rungs, analysis) = cut_at(&two, 0, 6);
+        assert_eq!((rungs[0].h / rungs[6].h).log2(), MIN_WINDOW_HALVINGS);
+        assert_eq!(cut_by_round_off(&rungs, &analysis), None);
+    }
+
+    /// A run converging to the exact motion at order `p >= 1` differs from
+    /// its half step by at least a quarter of its error
+    /// (`e / d = 1 / (1 - 2^-p) <= 2`, and a factor two for pre-asymptotic
+    /// rungs): an error of exactly four differences is still that; more is
+    /// convergence to something else.
+    #[test]
+    fn an_error_more_than_four_half_step_differences_is_convergence_elsewhere() {
+        let with_difference = |ratio: f64| {
+            let mut rungs = ladder(|h| h * h);
+            for r in &mut rungs {
+                r.half_step_difference = r.error.map(|e| e / ratio);
+            }
+            rungs
+        };
+        assert_eq!(converges_elsewhere(&with_difference(4.0), 1.0), None);
+        let found = converges_elsewhere(&with_difference(4.5), 1.0).expect("elsewhere");
+        assert!(found.contains("not to the exact solution"), "{found}");
+    }
+
+    /// No rung resolved the motion (every error ten times the orbit): the
+    /// advice depends on what ended the ladder, levels for a fixed one, the
+    /// step cap for an automatic one.
+    #[test]
+    fn unresolved_motion_is_advised_by_how_the_ladder_ended() {
+        let rungs = ladder(|_| 10.0);
+        let analysis = crate::maths::window::analyse(&data(&rungs), 1.0);
+        let advice = |end| {
+            let j = judge(2.0, &rungs, &analysis, Reference::Exact, end, 1.0);
+            assert_eq!(j.verdict, Verdict::Inconclusive, "{}", j.reason);
+            assert!(
+                j.reason.contains("no rung resolved the motion"),
+                "{}",
+                j.reason
+            );
+            j.advice.expect("advice")
+        };
+        assert!(advice(LadderEnd::Fixed).contains("more levels or a smaller h0"));
+        assert!(advice(LadderEnd::Cap).contains("raise the step cap"));
+    }
+
+    /// Every rung on the round-off floor, its bound half its error: the
+    /// reason gives the share, 0.5 at each of them.
+    #[test]
+    fn a_ladder_all_on_the_floor_reports_round_off_s_share_of_the_error() {
+        let mut rungs = ladder(|h| h * h);
+        for r in &mut rungs {
+            r.round_off_bound = r.error.map(|e| 0.5 * e);
+            r.round_off_sample = r.round_off_bound;
+        }
+        let (_, j) = judged_at_floor(2.0, rungs);
+        assert_eq!(j.verdict, Verdict::Inconclusive, "{}", j.reason);
+        let share = format!(
+            "the round-off bound is {} to {} of the error",
+            figure(0.5),
+            figure(0.5)
+        );
+        assert!(j.reason.contains(&share), "{share} in {}", j.reason);
     }
 }
