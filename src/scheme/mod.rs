@@ -24,6 +24,7 @@ mod nystrom_tables;
 mod runge_kutta;
 mod single_precision;
 mod splitting;
+mod summation;
 mod verlet;
 
 pub use adapter::{Hamiltonian, Rhs, Shape, Vector, VectorForce};
@@ -38,8 +39,7 @@ pub use black_box::{
 };
 pub use catalogue::{SchemeVisitor, TABLES, catalogue, scheme_ids, visit_scheme};
 pub use compensated::{
-    Compensated, Kahan, LEAPFROG_COMPENSATED, Rounded, STORMER_VERLET_COMPENSATED, Summable,
-    Summation, Summed, VELOCITY_VERLET_COMPENSATED,
+    LEAPFROG_COMPENSATED, STORMER_VERLET_COMPENSATED, VELOCITY_VERLET_COMPENSATED,
 };
 pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
 pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
@@ -58,6 +58,7 @@ pub use single_precision::{SingleCarry, SinglePrecision};
 pub use splitting::{
     EULER_CROMER, Flow, KickDrift, PEFRL, POSITION_VERLET, SplittingTable, VELOCITY_VERLET,
 };
+pub use summation::{Compensated, Kahan, Rounded, Summable, Summation, Summed};
 pub use verlet::{Leapfrog, Staggered, StormerVerlet, TwoStep};
 
 use crate::scene::Scene;

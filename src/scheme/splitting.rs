@@ -7,7 +7,7 @@
 //! Compositions of velocity Verlet (see [`super::composition`]) are turned into
 //! such tables at compile time and run by the same stepper.
 
-use super::compensated::{Rounded, Summable, Summation, rounded_scheme};
+use super::summation::{Rounded, Summable, Summation, rounded_scheme};
 use super::{Scheme, SchemeMeta, StepFailure, VERLET_PHASE};
 use crate::scene::Scene;
 use crate::state::{Real, State};

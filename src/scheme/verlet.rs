@@ -3,7 +3,7 @@
 //! Both are algebraically the same map as velocity Verlet once their velocities
 //! are synchronised; they differ in what they store and so in round-off.
 
-use super::compensated::{Rounded, Summable, Summation, rounded_scheme};
+use super::summation::{Rounded, Summable, Summation, rounded_scheme};
 use super::{Scheme, SchemeMeta, StepFailure, VERLET_PHASE};
 use crate::scene::Scene;
 use crate::state::{Real, State};
