@@ -606,6 +606,36 @@ mod tests {
     use crate::scene::{Harmonic, Hidden, KeplerCircular};
     use crate::scheme::{FOREST_RUTH, PEFRL, Rk4, VELOCITY_VERLET};
 
+    /// The module's derivation, in numbers: against an exact solution the
+    /// tolerance is `4 B(N)` plus twice the exact solution's own accuracy,
+    /// 16 `eps` of the scene's size; against the half step, `4 B(N)` and
+    /// `4 B(2N)` in quadrature. At `scale = 1e3` the exact solution's term,
+    /// `7.1e-12`, is the larger, so it cannot hide in the round-off.
+    #[test]
+    fn the_pin_tolerance_is_four_round_off_bounds_and_the_truth_s_accuracy() {
+        let samples = [(100, 1e-15), (1000, 1e-14), (10_000, 1e-13)];
+        let model = RoundOffModel::fit(&samples).expect("a model");
+        let (n, scale) = (1000, 1e3);
+        let truth = 2.0 * 16.0 * f64::EPSILON * scale;
+        let exact = pin_tolerance(&model, Reference::Exact, n, scale);
+        assert!(
+            truth > 4.0 * model.bound(n),
+            "{truth:e} {:e}",
+            model.bound(n)
+        );
+        let expected = 4.0 * model.bound(n) + truth;
+        assert!(
+            (exact - expected).abs() <= 1e-12 * expected,
+            "{exact:e} against {expected:e}"
+        );
+        let half = pin_tolerance(&model, Reference::HalfStep, n, scale);
+        let expected = 4.0 * model.bound(n).hypot(model.bound(2 * n));
+        assert!(
+            (half - expected).abs() <= 1e-12 * expected,
+            "{half:e} against {expected:e}"
+        );
+    }
+
     /// The pinned step is the span over the steps, and the tolerance is
     /// read as a fraction of the error: 10 over 400 steps is h = 1/40.
     #[test]
