@@ -434,3 +434,33 @@ fn a_breakdown_cites_the_first_coarser_step_that_resolved_the_motion() {
         "clean error {error:e} at h w = {w_h}"
     );
 }
+
+/// The same fault on the oscillator in units a thousand times smaller: every
+/// length is 1e3 times larger and the energy 1e6 times, E0 = 5e5. The clean
+/// coarser run's energy error is about 350 in those units, 7e-4 of E0, and
+/// it is that fraction the ceiling (0.3) judges: the probe still cites 2h
+/// with an error below (h w)^2. An energy error read in the scene's units
+/// would exceed the ceiling at every coarser step and leave the breakdown
+/// unexplained.
+#[test]
+fn a_breakdown_judges_the_coarser_run_by_its_relative_energy_error() {
+    use stepladder::scene::Scaled;
+    let scene = Scaled::new(Harmonic::default(), 1e3);
+    assert_eq!(scene.energy(&scene.initial()), 5e5);
+    let step = broken(&scene, Fault::NaN, 0.01);
+    let h = 0.006 * scene.period();
+    let spec = EnergySpec {
+        h: Some(h),
+        ..EnergySpec::default()
+    };
+    let e = energy_drift(&step, &scene, &spec).unwrap();
+    assert_eq!(e.verdict, Verdict::Fail, "{}", e.reason);
+    let b = e.breakdown.expect("a breakdown, not instability");
+    assert_eq!(b.clean_h, Some(2.0 * h), "{}", b.describe());
+    let error = b.clean_error.expect("the clean run's error");
+    let w_h = 2.0 * h * scene.frequency();
+    assert!(
+        error > 0.0 && error < w_h * w_h,
+        "clean error {error:e} at h w = {w_h}"
+    );
+}
