@@ -2,7 +2,9 @@
 //! radius and its excess over 1 for 2x2 maps whose eigenvalues are known,
 //! the determinant's round-off bound in proportion to its two products, the
 //! growth per period from the growth per step, and explicit Euler's growth
-//! law on the oscillator, whose one-step map has `det = 1 + z^2` exactly.
+//! law on the oscillator, whose one-step map has `det = 1 + z^2` exactly;
+//! and the scan's reach, on maps whose stable intervals are known by
+//! construction (a gap 0.05 wide, a limit at `z = 1000`).
 
 use stepladder::internals::stability::{
     determinant_round_off, growth_law, per_period, radius_excess, spectral_radius,
@@ -116,4 +118,73 @@ fn explicit_eulers_growth_law_is_z_squared() {
     }
     // a symplectic map has det = 1: no growth law
     assert!(growth_law(&VELOCITY_VERLET).is_none());
+}
+
+/// Velocity Verlet on slices at the step `step(h)` instead of `h`: a
+/// scheme whose stability on the study's oscillator `x'' = -x` (`z = h`) is
+/// Verlet's at `z' = step(z)`, stable exactly where `step(z) < 2`.
+fn verlet_stepping_at(
+    step: fn(f64) -> f64,
+) -> stepladder::scheme::BlackBox<f64, impl stepladder::scheme::BlackBoxStep<f64>> {
+    use stepladder::scheme::{BlackBox, Force};
+    BlackBox::new(
+        VELOCITY_VERLET.meta,
+        move |q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
+            let h = step(h);
+            let mut a = [0.0; 8];
+            let a = &mut a[..q.len()];
+            force(q, a);
+            for i in 0..q.len() {
+                v[i] += 0.5 * h * a[i];
+                q[i] += h * v[i];
+            }
+            force(q, a);
+            for i in 0..q.len() {
+                v[i] += 0.5 * h * a[i];
+            }
+        },
+    )
+}
+
+/// The stable intervals of `scheme`, an open end as infinity.
+fn intervals<M: stepladder::scheme::Scheme>(scheme: &M) -> (Vec<[f64; 2]>, Option<f64>) {
+    let r = stepladder::study::stability(scheme);
+    let edges = r
+        .stable_intervals
+        .iter()
+        .map(|i| [i[0].unwrap_or(f64::NAN), i[1].unwrap_or(f64::INFINITY)])
+        .collect();
+    (edges, r.stability_limit)
+}
+
+/// Velocity Verlet whose step, for `h w` strictly between 1.2 and 1.25, is
+/// taken as `h w = 3`, beyond its limit 2: a gap of instability 0.05 wide
+/// inside its stable interval. The scan, in steps of 1e-3 of `z` up to 20,
+/// must see the gap and place both of its edges, so the stable intervals
+/// are `[0, 1.2]` and `[1.25, 2]` and the limit is 1.2.
+#[test]
+fn a_narrow_gap_of_instability_is_found_by_the_scan() {
+    let gapped = verlet_stepping_at(|h| if h > 1.2 && h < 1.25 { 3.0 } else { h });
+    let (edges, limit) = intervals(&gapped);
+    let expected = [[0.0, 1.2], [1.25, 2.0]];
+    assert_eq!(edges.len(), 2, "{edges:?}");
+    for (found, want) in edges.iter().zip(&expected) {
+        for k in 0..2 {
+            assert!((found[k] - want[k]).abs() < 1e-6, "{edges:?}");
+        }
+    }
+    let limit = limit.expect("a limit");
+    assert!((limit - 1.2).abs() < 1e-6, "{limit}");
+}
+
+/// A scheme stable up to `h w = 1000` and unstable beyond (Verlet at a
+/// thousandth of the step, then at `h w = 3`): the log-spaced part of the
+/// scan, from 20 to 1e6, must reach it and place the limit at 1000.
+#[test]
+fn a_limit_far_beyond_the_linear_scan_is_found() {
+    let late = verlet_stepping_at(|h| if h <= 1000.0 { 1e-3 * h } else { 3.0 });
+    let (edges, limit) = intervals(&late);
+    assert_eq!(edges.len(), 1, "{edges:?}");
+    let limit = limit.expect("a limit");
+    assert!((limit / 1000.0 - 1.0).abs() < 1e-6, "{limit} {edges:?}");
 }
