@@ -3,8 +3,9 @@
 //! the determinant's round-off bound in proportion to its two products, the
 //! growth per period from the growth per step, and explicit Euler's growth
 //! law on the oscillator, whose one-step map has `det = 1 + z^2` exactly;
-//! and the scan's reach, on maps whose stable intervals are known by
-//! construction (a gap 0.05 wide, a limit at `z = 1000`).
+//! and the scan's reach and the growth law's test of one power, on maps
+//! whose stable intervals or growth are known by construction (a gap 0.05
+//! wide, a limit at `z = 1000`, a growth whose slope bends by 0.45).
 
 use stepladder::internals::stability::{
     determinant_round_off, growth_law, per_period, radius_excess, spectral_radius,
@@ -187,4 +188,48 @@ fn a_limit_far_beyond_the_linear_scan_is_found() {
     assert_eq!(edges.len(), 1, "{edges:?}");
     let limit = limit.expect("a limit");
     assert!((limit / 1000.0 - 1.0).abs() < 1e-6, "{limit} {edges:?}");
+}
+
+/// Explicit Euler on slices at the step `step(h)` instead of `h`: on the
+/// study's oscillator its one-step map has `det = 1 + step(z)^2`.
+fn euler_stepping_at(
+    step: impl Fn(f64) -> f64 + Sync,
+) -> stepladder::scheme::BlackBox<f64, impl stepladder::scheme::BlackBoxStep<f64>> {
+    use stepladder::scheme::{BlackBox, Force};
+    BlackBox::new(
+        Euler::META,
+        move |q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>| {
+            let h = step(h);
+            let mut a = [0.0; 8];
+            let a = &mut a[..q.len()];
+            force(q, a);
+            for i in 0..q.len() {
+                q[i] += h * v[i];
+                v[i] += h * a[i];
+            }
+        },
+    )
+}
+
+/// Explicit Euler at a step bent so that `det - 1 = step(z)^2` has log-slope
+/// 2 over the first quarter octave of the growth law's window (which starts
+/// at `z = 1e-6`, as for plain Euler), `2 + d` up to its middle, `2 - 3d/4`
+/// beyond: the slope over the whole window is still 2, but over each half
+/// it is `2 + 3d/4` and `2 - 3d/4`. With `3d/4 = 0.45`, beyond
+/// `GROWTH_POWER_TOLERANCE` (0.25), that is no single power and no law
+/// may be inferred; with `3d/4 = 0.15`, within it, the law is `z^2`.
+#[test]
+fn a_growth_that_bends_within_either_half_of_the_window_has_no_law() {
+    let window = growth_law(&Euler).expect("a law").window;
+    assert_eq!(window, [1e-6, 4e-6]);
+    let bent = |d: f64| {
+        let (l1, l4) = ((window[0] * 2f64.powf(0.25)).ln(), (2.0 * window[0]).ln());
+        move |h: f64| {
+            let l = h.ln();
+            (l + 0.5 * d * (l.clamp(l1, l4) - l1) - 0.375 * d * (l - l4).max(0.0)).exp()
+        }
+    };
+    assert!(growth_law(&euler_stepping_at(bent(0.6))).is_none());
+    let law = growth_law(&euler_stepping_at(bent(0.2))).expect("a law within the tolerance");
+    assert_eq!(law.power, 2);
 }
