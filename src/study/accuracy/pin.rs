@@ -800,6 +800,23 @@ mod tests {
         }
     }
 
+    /// A pin names what it was made for: one made for PEFRL, put where
+    /// Forest-Ruth's pin belongs (same scene, same order, same reference), is
+    /// refused as a pin for another scheme before any figure is compared.
+    #[test]
+    fn a_pin_made_for_another_scheme_is_refused_as_such() {
+        let d = dir("other-scheme");
+        check_pin_with(&PEFRL, &KeplerCircular, &d, false, false).unwrap();
+        let text = std::fs::read_to_string(pin_path(&d, "pefrl", "kepler-circular")).unwrap();
+        std::fs::write(pin_path(&d, "forest-ruth", "kepler-circular"), text).unwrap();
+        let message = check_pin_with(&FOREST_RUTH, &KeplerCircular, &d, false, false).unwrap_err();
+        assert!(
+            message.contains("the pin is for `pefrl` on `kepler-circular` at order 4"),
+            "{message}"
+        );
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
     #[test]
     fn a_method_of_the_same_order_with_another_constant_fails_the_pin() {
         // PEFRL is a fourth-order splitting tuned for a small leading error
