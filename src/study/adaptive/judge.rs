@@ -18,7 +18,8 @@ fn pre_asymptotic_method(claims: &AdaptiveClaims, f: &Proportionality) -> Option
     // still steps by its estimate's, and is refuted here)
     let steps = f.step_scaling.as_ref()?;
     // and the interval must be narrow enough to tell m from its neighbours:
-    // -1/m and -1/(m + 1) are 1/(m (m + 1)) apart, so at most half that wide
+    // -1/m and -1/(m + 1) are 1/(m (m + 1)) apart (-1/(m - 1) is farther), so
+    // an interval narrower than that which holds -1/m holds neither of them
     let sharp = steps.ci95[1] - steps.ci95[0] < 1.0 / (m * (m + 1.0));
     let controller = sharp && steps.ci95[0] <= -1.0 / m && -1.0 / m <= steps.ci95[1];
     let above = controller && method.ci95[0] > claims.order as f64;
