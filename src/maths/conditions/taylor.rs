@@ -459,10 +459,18 @@ const EXTRA_TERMS: usize = 4;
 /// coefficients of `q` and of `v`.
 type Reference = ([Series; D], [Series; D]);
 
+/// A bound on the terms of a series beyond its `last`, from the sizes
+/// `term(k)` of its terms: twice the last, on the premise that the terms
+/// fall at least by half per power from there on, as the last two do
+/// (`None` where they do not).
+fn tail(term: impl Fn(usize) -> f64, last: usize) -> Option<f64> {
+    let (before, last) = (term(last - 1), term(last));
+    (last <= before / 2.0).then_some(2.0 * last)
+}
+
 /// A bound on the Taylor terms of the exact flow left out of `reference` at
-/// step `h`: twice the last term kept, on the premise that the terms fall
-/// at least by half per power from there on, as the last two do (`None`
-/// where they do not, and the step is not used).
+/// step `h` ([`tail`]; `None` where the premise fails, and the step is not
+/// used).
 fn truncation(reference: &Reference, h: f64) -> Option<f64> {
     let (q, v) = reference;
     let term = |k: usize| {
@@ -471,8 +479,7 @@ fn truncation(reference: &Reference, h: f64) -> Option<f64> {
             .map(|s| s.value[k].to_f64().abs() * h.powi(k as i32))
             .fold(0.0, f64::max)
     };
-    let (before, last) = (term(REFERENCE_TERMS - 2), term(REFERENCE_TERMS - 1));
-    (last <= before / 2.0).then_some(2.0 * last)
+    tail(term, REFERENCE_TERMS - 1)
 }
 
 /// Largest entry of one numerical step from point 0 minus the exact flow.
@@ -532,13 +539,7 @@ pub(super) fn step_ratio(flows: &[(Flow, f64)], p: usize) -> Option<StepRatio> {
             })
             .fold(0.0, f64::max)
     };
-    let tail = |h: f64| {
-        let (before, last) = (
-            largest(top - 1) * power(h, top - 1),
-            largest(top) * power(h, top),
-        );
-        (last <= before / 2.0).then_some(2.0 * last)
-    };
+    let beyond = |h: f64| tail(|k| largest(k) * power(h, k), top);
     let (q0, v0) = problem.starts[0];
     let state_size = q0.iter().chain(&v0).fold(1.0f64, |a, &b| a.max(b.abs()));
     let step_noise =
@@ -546,7 +547,8 @@ pub(super) fn step_ratio(flows: &[(Flow, f64)], p: usize) -> Option<StepRatio> {
     let reference = problem.exact(0, REFERENCE_TERMS);
     // None where a premise on a tail fails
     let range = |h: f64| {
-        let bound = |h: f64| Some(rounding(h) + tail(h)? + step_noise + truncation(&reference, h)?);
+        let bound =
+            |h: f64| Some(rounding(h) + beyond(h)? + step_noise + truncation(&reference, h)?);
         let (b1, b2) = (bound(h)?, bound(h / 2.0)?);
         let (p1, p2) = (predicted(h), predicted(h / 2.0));
         (p2 > b2).then(|| ((p1 - b1) / (p2 + b2), (p1 + b1) / (p2 - b2)))
@@ -565,4 +567,56 @@ pub(super) fn step_ratio(flows: &[(Flow, f64)], p: usize) -> Option<StepRatio> {
         low,
         high,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sizes are majorants: every coefficient of the exact flow's
+    /// series, `q` and `v = q'` alike, is at most its size in magnitude
+    /// (the allowances' noise term rests on that), and the bound is used
+    /// and not vacuous: each size is finite.
+    #[test]
+    fn the_exact_series_sizes_bound_their_coefficients() {
+        let problem = Problem::new();
+        for point in 0..POINTS {
+            let (q, v) = problem.exact(point, 12);
+            for (name, series) in [("q", &q), ("v", &v)] {
+                for (c, s) in series.iter().enumerate() {
+                    for (k, (value, size)) in s.value.iter().zip(&s.size).enumerate() {
+                        let value = value.to_f64().abs();
+                        assert!(
+                            size.is_finite() && value <= *size,
+                            "{name}[{c}] at h^{k}, point {point}: |{value:e}| above {size:e}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// A reference series whose coefficients are all zero but for `terms`
+    /// (power, value).
+    fn reference_with(terms: &[(usize, f64)]) -> Reference {
+        let zero = || Series::constant(Dd::default(), REFERENCE_TERMS);
+        let mut q: [Series; D] = std::array::from_fn(|_| zero());
+        let v: [Series; D] = std::array::from_fn(|_| zero());
+        for &(k, x) in terms {
+            q[0].value[k] = Dd::of(x);
+        }
+        (q, v)
+    }
+
+    /// The truncation bound rests on the last two kept terms falling by at
+    /// least half: where they do, it is twice the last; where they do not,
+    /// no bound is claimed, however large an earlier term is.
+    #[test]
+    fn truncation_is_bounded_only_where_the_last_terms_fall() {
+        let last = REFERENCE_TERMS - 1;
+        let falling = reference_with(&[(20, 1e3), (last - 1, 1.0), (last, 0.25)]);
+        assert_eq!(truncation(&falling, 1.0), Some(0.5));
+        let flat = reference_with(&[(20, 1e3), (last - 1, 1.0), (last, 1.0)]);
+        assert_eq!(truncation(&flat, 1.0), None);
+    }
 }

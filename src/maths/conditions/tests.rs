@@ -226,3 +226,29 @@ fn zero_weights_are_exact() {
     let c = splitting_general(&flows, 3).unwrap();
     assert!(c.confirms(2), "{c}");
 }
+
+/// A sequence of flows that all have weight zero is the identity map: its
+/// weights round nowhere, so each allowance is the double-double noise
+/// alone, still positive, and the identity's `h^1` coefficient misses the
+/// flow's `A + B` by far more than that: it is not consistent.
+#[test]
+fn the_identity_map_is_not_consistent() {
+    let flows = [(Flow::Drift, 0.0), (Flow::Kick, 0.0), (Flow::Drift, 0.0)];
+    let c = splitting_general(&flows, 2).unwrap();
+    let first = c.at(1).unwrap();
+    assert!(first.allowance > 0.0, "{c}");
+    assert!(first.clearly_fails(), "{c}");
+    assert_eq!(c.order(), 0, "{c}");
+}
+
+/// The same for a Runge-Kutta tableau: zero weights make `y' = y`, and the
+/// first tree, `sum b_i = 1`, fails by 1 against an allowance that is the
+/// double-double noise alone, still positive.
+#[test]
+fn a_tableau_with_zero_weights_is_not_consistent() {
+    let c = runge_kutta(&[[0.0, 0.0], [0.5, 0.0]], &[0.0, 0.0], 2).unwrap();
+    let first = c.by_degree.at(1).unwrap();
+    assert!(first.allowance > 0.0, "{}", c.by_degree);
+    assert!(first.clearly_fails(), "{}", c.by_degree);
+    assert_eq!(c.order(), 0, "{}", c.by_degree);
+}

@@ -669,6 +669,35 @@ mod tests {
         }
     }
 
+    /// The pin goes to the rung whose error stands farthest above its
+    /// tolerance, the sharpest check a reproducible run allows: not the
+    /// rung with the largest error, nor the one with the largest tolerance.
+    /// With every resolved rung's error rewritten to 1.5 times its
+    /// tolerance and one middle rung's to 3 times, that middle rung is
+    /// pinned, although finer rungs have larger tolerances and coarser ones
+    /// no smaller errors.
+    #[test]
+    fn the_pin_is_the_rung_farthest_above_its_tolerance() {
+        let osc = Harmonic::default();
+        let mut record =
+            global_order(&VELOCITY_VERLET, &osc, &OrderSpec::default()).expect("a study");
+        let model = record.round_off.expect("a round-off model");
+        let ceiling = ERROR_CEILING * osc.scale();
+        let resolved: Vec<usize> = (0..record.rungs.len())
+            .filter(|&i| record.rungs[i].error.is_some_and(|e| e <= ceiling))
+            .collect();
+        assert!(resolved.len() >= 5, "{resolved:?}");
+        let target = resolved[resolved.len() / 2];
+        for &i in &resolved {
+            let rung = &mut record.rungs[i];
+            let tolerance = pin_tolerance(&model, record.reference, rung.steps, osc.scale());
+            let multiple = if i == target { 3.0 } else { 1.5 };
+            rung.error = Some(multiple * tolerance);
+        }
+        let pin = new_pin(&VELOCITY_VERLET, &osc, &record).expect("a pin");
+        assert_eq!(pin.steps, record.rungs[target].steps);
+    }
+
     #[test]
     fn a_pin_round_trips_through_its_text() {
         let pin = Pin {

@@ -265,3 +265,108 @@ pub(super) fn judge_round_trip(claims: &AdaptiveClaims, r: &RoundTrip) -> Judged
         reason,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::maths::fit::{OrderFit, PowerLaw};
+
+    /// A 4(5) pair's claims: order 4, an estimate like `h^5`.
+    const CLAIMS: AdaptiveClaims = AdaptiveClaims {
+        order: 4,
+        estimate_power: 5,
+        proportionality: Some(0.8),
+        symplectic: false,
+        symmetric: false,
+        error_factor: None,
+    };
+
+    fn order_fit(ci95: [f64; 2]) -> OrderFit {
+        OrderFit {
+            order: 0.5 * (ci95[0] + ci95[1]),
+            standard_error: 0.0,
+            corrections: [None],
+            t_quantile: 2.0,
+            systematic: 0.0,
+            ci95,
+            points: 6,
+            line: power_law_with(ci95),
+        }
+    }
+
+    fn power_law_with(ci95: [f64; 2]) -> PowerLaw {
+        PowerLaw {
+            slope: 0.5 * (ci95[0] + ci95[1]),
+            intercept: 0.0,
+            ci95,
+            standard_error: 0.0,
+            correlation: -1.0,
+            points: 6,
+        }
+    }
+
+    /// A fit of `error ~ TOL^k` whose method shows order [5.2, 5.6] at fixed
+    /// steps (above its asymptotic 4, so `k` near 5.4 / 5), and whose
+    /// accepted steps follow `TOL^s` with `s` in `steps`.
+    fn fitted(steps: [f64; 2]) -> Proportionality {
+        Proportionality {
+            exponent: 1.05,
+            ci95: [1.0, 1.1],
+            estimate_power: 5,
+            fit: order_fit([5.0, 5.5]),
+            range: [1e-4, 1e-10],
+            theory: Some(0.8),
+            method_order: Some(order_fit([5.2, 5.6])),
+            step_scaling: Some(power_law_with(steps)),
+        }
+    }
+
+    /// The controller's `-1/5` is told from its neighbours only by an
+    /// interval narrower than `1/5 - 1/6 = 1/30`: [-0.205, -0.195] confirms
+    /// it, but [-0.21, -0.16] also holds `-1/6`, a controller of power 6,
+    /// and so cannot excuse the exponent.
+    #[test]
+    fn only_a_step_law_sharper_than_its_neighbours_excuses_the_exponent() {
+        assert!(pre_asymptotic_method(&CLAIMS, &fitted([-0.205, -0.195])).is_some());
+        let wide = [-0.21, -0.16];
+        assert!(wide[0] <= -1.0 / 6.0 && -1.0 / 6.0 <= wide[1]);
+        assert!(pre_asymptotic_method(&CLAIMS, &fitted(wide)).is_none());
+    }
+
+    /// Accepted steps `N = 1e6 (TOL / 1e-3)^s` at eight tolerances, 1e-3 to
+    /// 1e-10.
+    fn steps_like(s: f64) -> Vec<TolerancePoint> {
+        (3..11)
+            .map(|k| {
+                let tolerance = 10f64.powi(-k);
+                let accepted = (1e6 * (tolerance / 1e-3).powf(s)).round() as u64;
+                TolerancePoint {
+                    tolerance,
+                    evaluations: 6 * accepted,
+                    accepted,
+                    rejected: 0,
+                    end: RunEnd::Reached,
+                    error: None,
+                    round_off: 0.0,
+                    fitted: true,
+                    reported_evaluations: None,
+                    breakdown: None,
+                }
+            })
+            .collect()
+    }
+
+    /// With an estimate like `h^5` the steps grow like `TOL^(-1/5)`; an
+    /// estimate that is really `h^4` makes them grow like `TOL^(-1/4)`,
+    /// past the halfway point -0.225, and refutes the cost.
+    #[test]
+    fn steps_growing_as_a_lower_power_s_refute_the_cost() {
+        let claimed = cost_growth(&CLAIMS, &steps_like(-0.2)).unwrap();
+        assert_eq!(claimed.verdict, Verdict::Pass, "{}", claimed.reason);
+        let slower = cost_growth(&CLAIMS, &steps_like(-0.22)).unwrap();
+        assert_eq!(slower.verdict, Verdict::Pass, "{}", slower.reason);
+        let lower = cost_growth(&CLAIMS, &steps_like(-0.25)).unwrap();
+        assert_eq!(lower.verdict, Verdict::Fail, "{}", lower.reason);
+        assert!(lower.reason.contains("-0.225"), "{}", lower.reason);
+    }
+}
