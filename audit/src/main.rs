@@ -1,7 +1,7 @@
 //! Runs every audited method and writes AUDIT.md beside Cargo.toml; exits
 //! with an error if any verdict differs from its expectation.
 
-#[path = "../../lab/tests/harness/audit_fingerprint.rs"]
+#[path = "../../lab/src/fingerprint.rs"]
 mod audit_fingerprint;
 
 use std::path::Path;

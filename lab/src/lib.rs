@@ -10,6 +10,8 @@
 pub mod case;
 pub mod cli;
 pub mod corpus;
+pub mod fingerprint;
 pub mod peer;
 pub mod report;
+pub mod sensitivity;
 pub mod suite;

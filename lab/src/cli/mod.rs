@@ -26,6 +26,7 @@ use stepladder::study::Verdict;
 
 mod cost_commands;
 mod hard_commands;
+mod sensitivity_command;
 
 /// Is your time integrator as accurate, stable and geometric as it claims?
 #[derive(Debug, Parser)]
@@ -100,6 +101,10 @@ enum Command {
     /// scheme (and each peer: ode_solvers' Dop853, numeris' Verner 9(8))
     /// needs to reach target errors.
     Work(WorkArgs),
+    /// The sensitivity map: every coefficient of every catalogue table
+    /// moved in turn, and the smallest change each claim of the guard
+    /// rejects; writes lab/SENSITIVITY.md.
+    Sensitivity(sensitivity_command::SensitivityArgs),
 }
 
 /// The scheme and scene every single-case study takes.
@@ -263,6 +268,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         }
         Command::Speed(a) => cost_commands::speed(&a),
         Command::Work(a) => cost_commands::work(&a),
+        Command::Sensitivity(a) => sensitivity_command::sensitivity(&a),
         Command::Corpus { threads, json } => corpus(threads, json),
         Command::Energy(a) => {
             let r = a.case.case()?.energy(&EnergySpec {

@@ -27,6 +27,12 @@ pub fn summary(records: &SuiteRecords) -> String {
          writes, each refuted claim confirmed independently of the harness: \
          [audit/AUDIT.md](audit/AUDIT.md).\n\n",
     );
+    out.push_str(
+        "What a green guard rules out: every coefficient of every catalogue table moved in \
+         turn (by 1e-1 down to 1e-15, and in sign) or swapped with each other stage of its \
+         kind, with the smallest change each claim rejects: \
+         [lab/SENSITIVITY.md](lab/SENSITIVITY.md).\n\n",
+    );
     out.push_str(&verdict_counts(records));
     out.push_str("\n### Orders at a glance\n\n");
     out.push_str(

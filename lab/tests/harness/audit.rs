@@ -3,8 +3,8 @@
 //! BLAS, LAPACK, MUMPS and SuiteSparse for one of them): these tests make a
 //! table made from other sources fail instead of going stale.
 
-use crate::audit_fingerprint::fingerprint;
 use std::path::PathBuf;
+use stepladder_lab::fingerprint::fingerprint;
 
 #[test]
 fn the_committed_audit_was_made_from_these_sources() {

@@ -3,7 +3,6 @@
 
 mod adaptive;
 mod audit;
-mod audit_fingerprint;
 mod bad_input;
 mod broken;
 mod catalogue;
@@ -25,6 +24,7 @@ mod properties;
 mod race;
 mod report;
 mod roundoff;
+mod sensitivity;
 mod snapshots;
 mod speed;
 mod stability;
