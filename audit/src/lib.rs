@@ -13,16 +13,16 @@ pub mod glue;
 pub mod methods;
 pub mod report;
 
-use stepladder::scene::{Harmonic, KeplerEccentric, Scene};
-use stepladder::scheme::Scheme;
-use stepladder::scheme::{AdaptiveClaims, AdaptiveIntegrator};
-use stepladder::study::Verdict;
 use stepladder::internals::accuracy::order::{OrderSpec, global_order};
 use stepladder::internals::adaptive::{ToleranceLadderSpec, tolerance_ladder};
 use stepladder::internals::cost::evaluations::{counting_step, evaluations};
 use stepladder::internals::geometry::energy::{EnergySpec, energy_drift};
 use stepladder::internals::geometry::reverse::{ReverseSpec, reversibility};
 use stepladder::internals::geometry::symplectic::{SymplecticSpec, symplecticity};
+use stepladder::scene::{Harmonic, KeplerEccentric, Scene};
+use stepladder::scheme::Scheme;
+use stepladder::scheme::{AdaptiveClaims, AdaptiveIntegrator};
+use stepladder::study::{Verdict, recover_quadrature};
 
 /// The words in which a crate states a property of a method, quoted, and
 /// where they stand in its published source (`crate-version/path:line`, or
@@ -167,6 +167,34 @@ pub struct FixedExpectation {
     pub why: &'static str,
     /// Independent evidence for each verdict that is not a pass.
     pub evidence: &'static [Evidence],
+    /// For an order claim expected to fail, the order condition the source
+    /// reading found broken: stepladder's probe of the step must name it
+    /// first, with the same defect.
+    pub named: Option<Named>,
+}
+
+/// An order condition broken in a method's published coefficients, and its
+/// defect computed from them directly (never through stepladder).
+#[derive(Clone, Copy, Debug)]
+pub struct Named {
+    /// The condition as stepladder's probe words it (`sum b_i c_i^4 = 1/5`).
+    pub condition: &'static str,
+    /// Its defect, computed from the published coefficients.
+    pub defect: f64,
+    /// How that defect was computed.
+    pub source: &'static str,
+}
+
+impl FixedExpectation {
+    /// The expectation with the broken condition the source reading names.
+    pub fn naming(mut self, condition: &'static str, defect: f64, source: &'static str) -> Self {
+        self.named = Some(Named {
+            condition,
+            defect,
+            source,
+        });
+        self
+    }
 }
 
 /// What the studies measured of one fixed-step method on one scene.
@@ -191,6 +219,11 @@ pub struct FixedRow {
     pub per_step: f64,
     /// Each study's failure, if any, in [`ClaimVerdicts`] order.
     pub reasons: [Option<String>; 5],
+    /// A failed order claim's probe of the step's order conditions.
+    pub probe: Option<stepladder::study::ConditionProbe>,
+    /// For a failed order claim, the step's weights and nodes recovered
+    /// from its moments.
+    pub quadrature: Option<stepladder::study::RecoveredQuadrature>,
 }
 
 /// A fixed-step method's audit: claims, expectation, rows per scene.
@@ -250,6 +283,12 @@ fn fixed_row<M: Scheme, S: Scene<D>, const D: usize>(scheme: &M, scene: &S) -> F
             failure((&energy).into()),
             failure((&counted).into()),
         ],
+        quadrature: order
+            .probe
+            .is_some()
+            .then(|| recover_quadrature::<M, D>(scheme))
+            .flatten(),
+        probe: order.probe,
     }
 }
 
@@ -426,6 +465,33 @@ impl Audit {
     }
 }
 
+/// How the probe of a row's step departs from the condition the source
+/// reading names: another condition first, none, or another defect (by
+/// more than the probe's allowance).
+fn probe_disagrees(named: &Named, row: &FixedRow) -> Option<String> {
+    let Some(probe) = &row.probe else {
+        return Some(format!(
+            "no probe of the step, expected {} to fail by {:.2e}",
+            named.condition, named.defect
+        ));
+    };
+    match probe.first_violated() {
+        Some(first)
+            if first.condition == named.condition
+                && (first.defect - named.defect).abs() <= first.allowance =>
+        {
+            None
+        }
+        _ => Some(format!(
+            "the probe found \"{}\", the source reading {} failing by {:.2e} ({})",
+            probe.describe(),
+            named.condition,
+            named.defect,
+            named.source
+        )),
+    }
+}
+
 /// Every measured verdict that differs from its expectation, one line each
 /// with the study's own reason.
 pub fn disagreements(audit: &Audit) -> Vec<String> {
@@ -434,6 +500,10 @@ pub fn disagreements(audit: &Audit) -> Vec<String> {
     match audit {
         Audit::Fixed(a) => {
             for row in &a.rows {
+                let named = a.expected.named.as_ref();
+                if let Some(miss) = named.and_then(|n| probe_disagrees(n, row)) {
+                    out.push(format!("{} {} on {}: {miss}", p.krate, p.method, row.scene));
+                }
                 let want = a.expected.on(row.scene);
                 for ((claim, got), want) in CLAIMS.iter().zip(row.verdicts()).zip(want) {
                     if got != want {

@@ -20,7 +20,7 @@ use crate::{
 };
 use differential_equations::methods::SymplecticIntegrator;
 use differential_equations::prelude::ExplicitRungeKutta;
-use peroxide::fuga::{DP45, GL4, ImplicitSolver, RALS3, RALS4, RK4, RK5, TSIT45};
+use peroxide::fuga::{ButcherTableau, DP45, GL4, ImplicitSolver, RALS3, RALS4, RK4, RK5, TSIT45};
 use stepladder::scheme::{AdaptiveBlackBox, AdaptiveClaims};
 use stepladder::scheme::{BlackBox, SchemeMeta};
 use stepladder::study::Verdict::{Fail, Inconclusive, NotClaimed, Pass};
@@ -50,12 +50,20 @@ const fn claims(
 
 /// Every claim expected to hold, for a method whose coefficients pass the
 /// independent checks.
+/// `sum b_i c_i^m - 1/(m+1)` of an explicit tableau, with `c` the row sums
+/// of `a` (what an autonomous problem sees).
+fn bushy_defect(a: &[&[f64]], b: &[f64], m: i32) -> f64 {
+    let nodes = a.iter().map(|row| row.iter().sum::<f64>());
+    b.iter().zip(nodes).map(|(b, c)| b * c.powi(m)).sum::<f64>() - 1.0 / f64::from(m + 1)
+}
+
 const fn holds(why: &'static str) -> FixedExpectation {
     FixedExpectation {
         harmonic: [Pass; 5],
         kepler: [Pass; 5],
         why,
         evidence: &[],
+        named: None,
     }
 }
 
@@ -71,6 +79,7 @@ const fn except(
         kepler: verdicts,
         why,
         evidence,
+        named: None,
     }
 }
 
@@ -831,6 +840,11 @@ peroxide_fixed!(
             "published a32 = 0.158575964 and a42 = -3.050965616 (ode.rs:428-429) leave c3 - (a31 + a32) = 1.84e-4 and 1 - (a41 + a42 + a43) = 4.6e-7; with c the row sums of A (what an autonomous problem sees) the order-2 condition sum b c = 1/2 fails by -2.2e-4 (by -4.9e-9 with the published C): order 1; the crate's RALS4 on q'' = -q, (q, v)(0) = (1, 0), to T = 1, halves its error with each halving of h from h = 1/16 to 1/1024 (reproduce both: `cargo test --release --test independent peroxide_rals4 -- --nocapture`)",
         )]
     )
+    .naming(
+        "sum b_i c_i = 1/2",
+        bushy_defect(RALS4::A, RALS4::BU, 1),
+        "the public consts A and BU, c the row sums of A"
+    )
 );
 peroxide_fixed!(
     peroxide_rk5,
@@ -860,6 +874,11 @@ peroxide_fixed!(
             &[Order],
             "BU (ode.rs:475-483) = (5179/57600, 0, 7571/16695, 393/640, -92097/339200, 187/2100, 1/40), Dormand-Prince's embedded 4th-order weights: the order-5 condition sum b c^4 = 1/5 fails by -2.6e-4 while those of order 1 to 4 for the bushy trees hold to round-off (reproduce: `cargo test --release --test independent peroxide_rk5 -- --nocapture`)",
         )]
+    )
+    .naming(
+        "sum b_i c_i^4 = 1/5",
+        bushy_defect(RK5::A, RK5::BU, 4),
+        "the public consts A and BU, c the row sums of A"
     )
 );
 
@@ -925,6 +944,11 @@ pub fn peroxide_gl4_fixed_point() -> Audit {
                     "both stages then share y + c1 h k: the theta-method with theta = c1 = 1/2 - sqrt(3)/6 = 0.211, whose map on q'' = -q has determinant (1 + (1 - theta)^2 h^2) / (1 + theta^2 h^2), not 1, and is not its own adjoint (theta != 1/2); the crate's one-step map has that determinant, 1.005771 at h = 0.1 (same test)",
                 ),
             ],
+        )
+        .naming(
+            "sum b_i c_i = 1/2",
+            -(3f64.sqrt()) / 6.0,
+            "the theta-method's sum b c = theta = 1/2 - sqrt(3)/6"
         ),
     ))
 }
@@ -982,6 +1006,7 @@ pub fn peroxide_gl4_broyden() -> Audit {
                 &[Order, Symplectic, Symmetric, Energy],
                 "compared step by step with the exact GL4 map of q'' = -q (the (2,2) Pade approximant R(z) = (1 + z/2 + z^2/12)/(1 - z/2 + z^2/12)), from (q, v) = (1, 0) to T = 1 at iteration tolerance 1e-14, the crate's step departs from it by up to 1.5e-10 at h = 1/16, 9.7e-12 at 1/64, 5.0e-16 at 1/512 and 3.8e-14 at 1/1024, irregularly, as the calls per step fall from 11 to 9 to 7 (fewer iterations); its error at T = 1 is 6.5x GL4's at h = 1/64; at h = 1/1024 it is 3.9e-11, 317x the GL4 map iterated in doubles (1.2e-13, round-off: GL4's own truncation error there, h^4 T / 720 in phase, is 1.26e-15) and 3.1e4x that truncation error (reproduce: `cargo test --release --test independent peroxide_gl4_broyden -- --nocapture`)",
             )],
+            named: None,
         },
     ))
 }

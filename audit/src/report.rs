@@ -31,6 +31,56 @@ fn verdict(v: Verdict) -> &'static str {
     }
 }
 
+/// What stepladder's probe of the step names for a refuted order claim (the
+/// failure message's last clause, which the 300 characters above cut), on
+/// each scene, with the source reading's figure where there is one; the
+/// audit's tests check that the two agree.
+fn probe_line(f: &crate::FixedAudit) -> Option<String> {
+    let named: Vec<String> = f
+        .rows
+        .iter()
+        .filter_map(|row| {
+            let probe = row.probe.as_ref()?;
+            let what = match probe.first_violated() {
+                Some(first) => format!(
+                    "order {} condition {} fails by {:.2e} (allowance {:.1e})",
+                    first.order, first.condition, first.defect, first.allowance
+                ),
+                None => format!(
+                    "no condition it separates fails through order {}",
+                    probe.holds_through()
+                ),
+            };
+            Some(format!("on {}, {what}", row.scene))
+        })
+        .collect();
+    if named.is_empty() {
+        return None;
+    }
+    let source = f.expected.named.map_or(String::new(), |n| {
+        format!(
+            "; from the published coefficients, {} fails by {:.2e} ({})",
+            n.condition, n.defect, n.source
+        )
+    });
+    let rule = f
+        .rows
+        .iter()
+        .find_map(|row| row.quadrature.as_ref().map(|q| (row.scene, q)))
+        .map_or(String::new(), |(scene, q)| {
+            format!(
+                "; its weights and nodes, recovered from its moments \
+                 (`stepladder::study::recover_quadrature`, on {scene}'s dimension): {}",
+                q.describe()
+            )
+        });
+    Some(format!(
+        "named by stepladder's probe of the first step (`stepladder::study::probe_conditions`, \
+         the failure message's last clause): {}{source}{rule}",
+        named.join("; ")
+    ))
+}
+
 /// A study's reason cut to its first 300 characters, for one line.
 fn first_sentence(reason: &str) -> String {
     let flat = reason.replace('\n', " ");
@@ -314,6 +364,9 @@ pub fn audit_md(audits: &[Audit], seconds: f64, fingerprint: &str) -> String {
                             );
                         }
                     }
+                }
+                if let Some(line) = probe_line(f) {
+                    let _ = writeln!(s, "  - {line}");
                 }
             }
             Audit::Adaptive(x) => {

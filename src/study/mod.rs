@@ -6,6 +6,8 @@
 //! | question | study | spec | record |
 //! |---|---|---|---|
 //! | global order, with a 95% interval | [`global_order`] | [`OrderSpec`] | [`OrderRecord`] |
+//! | the order conditions a step breaks | [`probe_conditions`] | | [`ConditionProbe`] |
+//! | a step's weights and nodes | [`recover_quadrature`] | | [`RecoveredQuadrature`] |
 //! | phase error on the oscillator | [`phase_error`] | | [`PhaseRecord`] |
 //! | energy over long runs | [`energy_drift`] | [`EnergySpec`] | [`EnergyRecord`] |
 //! | symplecticity of the tangent map | [`symplecticity`] | [`SymplecticSpec`] | [`SymplecticRecord`] |
@@ -52,6 +54,8 @@ pub use accuracy::order::{
 };
 pub use accuracy::phase::{PhaseRecord, phase_error};
 pub use accuracy::pin::{Pin, PinOutcome, check_pin};
+pub use accuracy::probe::{ConditionProbe, ProbedCondition, probe_conditions};
+pub use accuracy::quadrature::{RecoveredQuadrature, recover_quadrature};
 pub use accuracy::scene_check::{SceneCheck, check_scene};
 pub use adaptive::{
     AdaptiveClaim, AdaptivePin, AdaptivePinOutcome, JudgedClaim, ToleranceLadderRecord,

@@ -618,5 +618,27 @@ mod tests {
         assert_eq!(truncation(&falling, 1.0), Some(0.5));
         let flat = reference_with(&[(20, 1e3), (last - 1, 1.0), (last, 1.0)]);
         assert_eq!(truncation(&flat, 1.0), None);
+        // the terms are the coefficients times h^k: at h = 1/2 the
+        // coefficients 1 and 1/2 make terms 2^-(last-1) and 2^-(last+1),
+        // falling by a quarter, so the bound is twice the last
+        let halving = reference_with(&[(last - 1, 1.0), (last, 0.5)]);
+        assert_eq!(truncation(&halving, 0.5), Some(0.5f64.powi(last as i32)));
+    }
+
+    /// Velocity Verlet's local error is `E_3 h^3 + ... + E_8 h^8` plus
+    /// what the expansion leaves out. At `h = 2^-10` the tail beyond `h^8`
+    /// is `h^5 ~ 1e-15` of the leading term, and the double-double rounding
+    /// (`2^-104` per operation, some hundreds of them) is `1e-19` of it, so
+    /// the narrowest range the ratio `e(h)/e(h/2)` is given must be far
+    /// narrower than `1e-6` relative, and hold the measured ratio, near
+    /// `2^3`. A tail bound that did not scale its terms by `h^k` would
+    /// swamp the prediction at every step and leave no range at all.
+    #[test]
+    fn velocity_verlet_step_ratio_is_pinned_to_its_expansion() {
+        let verlet = [(Flow::Kick, 0.5), (Flow::Drift, 1.0), (Flow::Kick, 0.5)];
+        let r = step_ratio(&verlet, 2).unwrap();
+        assert!(r.holds(), "{r:?}");
+        assert!(r.high / r.low - 1.0 < 1e-6, "{r:?}");
+        assert!((r.measured / 8.0 - 1.0).abs() < 1e-2, "{r:?}");
     }
 }

@@ -5,6 +5,8 @@ pub mod order;
 pub mod order_verdict;
 pub mod phase;
 pub mod pin;
+pub mod probe;
+pub mod quadrature;
 pub mod rung;
 pub mod scene_check;
 pub mod trajectory;

@@ -53,6 +53,7 @@ use crate::scene::{Invariant, InvariantValue, Scaled, Scene};
 use crate::scheme::{Scheme, SolveTally};
 use crate::state::State;
 use crate::study::accuracy::invariants::{InvariantRecord, InvariantSample, judge_invariant};
+use crate::study::accuracy::probe::{ConditionProbe, probe_conditions};
 use crate::study::breakdown::{Breakdown, LadderRun, in_ladder};
 use crate::study::verdict::Verdict;
 use crate::tolerance::{
@@ -181,6 +182,10 @@ pub struct OrderRecord {
     /// [`crate::study::breakdown`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub breakdown: Option<Breakdown>,
+    /// For a failed claim, the order conditions of the scheme's one-step
+    /// map, probed through the claimed order (see [`probe_conditions`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub probe: Option<ConditionProbe>,
     /// Without an exact solution, whether each quantity the scene's exact
     /// flow conserves returns to its initial value as `h -> 0` (see
     /// [`crate::study::accuracy::invariants`]); a failure fails the order
@@ -219,7 +224,7 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         .unwrap_or_else(|| scene.default_t_end());
     let mut record = order_at(scheme, scene, spec.ladder, t_end)?;
     if spec.t_end.is_some() || matches!(spec.ladder, LadderChoice::Fixed(_)) {
-        return Ok(record);
+        return Ok(with_probe::<M, D>(scheme, record));
     }
     // The default end time could not decide: the error grows along the run
     // (a phase error linearly, round-off as a random walk magnified by the
@@ -242,7 +247,21 @@ pub fn global_order<M: Scheme, S: Scene<D>, const D: usize>(
         next.shortened_from = Some(t_end);
         record = next;
     }
-    Ok(record)
+    Ok(with_probe::<M, D>(scheme, record))
+}
+
+/// A failed order claim with the first order condition the scheme's
+/// one-step map violates (see [`probe_conditions`]), named in its reason.
+/// Not after a breakdown, whose panic or stop the reason already names.
+fn with_probe<M: Scheme, const D: usize>(scheme: &M, mut record: OrderRecord) -> OrderRecord {
+    if record.verdict != Verdict::Fail || record.breakdown.is_some() {
+        return record;
+    }
+    if let Some(probe) = probe_conditions::<M, D>(scheme, record.theoretical_order) {
+        record.reason = format!("{}; {}", record.reason, probe.describe());
+        record.probe = Some(probe);
+    }
+    record
 }
 
 /// When an end time leaves the order undecided, the study runs again over
@@ -909,6 +928,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             reason: judgement.reason,
             advice: judgement.advice,
             breakdown,
+            probe: None,
             invariants,
             rungs: all,
         }

@@ -1,0 +1,342 @@
+//! The condition probe on black boxes whose tableau is known: the condition
+//! it names, and its defect, must be the tableau's own, computed here from
+//! the coefficients directly, in `f64` and in `f32`.
+
+use std::ops::{Add, Mul};
+use stepladder::prelude::*;
+use stepladder::scene::KeplerCircular;
+use stepladder::scheme::Float;
+use stepladder::study::{
+    ConditionProbe, OrderSpec, global_order, probe_conditions, recover_quadrature,
+};
+
+/// An explicit Runge-Kutta tableau: `a` strictly lower triangular, row by
+/// row, and the weights `b`.
+struct Tableau {
+    a: &'static [&'static [f64]],
+    b: &'static [f64],
+}
+
+impl Tableau {
+    /// The nodes an autonomous problem sees: the row sums of `a`.
+    fn nodes(&self) -> Vec<f64> {
+        self.a.iter().map(|row| row.iter().sum()).collect()
+    }
+
+    /// `sum b_i c_i^m - 1/(m+1)`, with `c` the row sums.
+    fn bushy_defect(&self, m: i32) -> f64 {
+        let c = self.nodes();
+        self.b
+            .iter()
+            .zip(&c)
+            .map(|(b, c)| b * c.powi(m))
+            .sum::<f64>()
+            - 1.0 / f64::from(m + 1)
+    }
+
+    /// `sum b_bar_i c_i^m - 1/((m+1)(m+2))`, with `b_bar = b A`.
+    fn position_defect(&self, m: i32) -> f64 {
+        let c = self.nodes();
+        let b_bar = (0..self.b.len()).map(|j| {
+            (j + 1..self.b.len())
+                .map(|i| self.b[i] * self.a[i][j])
+                .sum::<f64>()
+        });
+        b_bar.zip(&c).map(|(b, c)| b * c.powi(m)).sum::<f64>() - 1.0 / f64::from((m + 1) * (m + 2))
+    }
+}
+
+/// One step of `tableau` on `y = [q, v]`, `y' = [v, a(q)]`, in `T`.
+fn runge_kutta<T>(tableau: &Tableau, q: &mut [T], v: &mut [T], h: T, force: &Force<T>)
+where
+    T: Float + Add<Output = T> + Mul<Output = T>,
+{
+    let n = q.len();
+    let stages = tableau.b.len();
+    let (mut kq, mut kv) = ([[T::default(); 2]; 16], [[T::default(); 2]; 16]);
+    for i in 0..stages {
+        let (mut x, mut u) = ([T::default(); 2], [T::default(); 2]);
+        for d in 0..n {
+            x[d] = q[d];
+            u[d] = v[d];
+            for j in 0..i {
+                let w = h * T::from_f64(tableau.a[i][j]);
+                x[d] = x[d] + w * kq[j][d];
+                u[d] = u[d] + w * kv[j][d];
+            }
+        }
+        kq[i][..n].copy_from_slice(&u[..n]);
+        force(&x[..n], &mut kv[i][..n]);
+    }
+    for d in 0..n {
+        for i in 0..stages {
+            let w = h * T::from_f64(tableau.b[i]);
+            q[d] = q[d] + w * kq[i][d];
+            v[d] = v[d] + w * kv[i][d];
+        }
+    }
+}
+
+const RK4: Tableau = Tableau {
+    a: &[&[], &[0.5], &[0.0, 0.5], &[0.0, 0.0, 1.0]],
+    b: &[1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+};
+
+/// Dormand and Prince's 5(4) stages with the embedded fourth-order weights
+/// in place of the fifth-order ones.
+const DOPRI_EMBEDDED: Tableau = Tableau {
+    a: &[
+        &[],
+        &[1.0 / 5.0],
+        &[3.0 / 40.0, 9.0 / 40.0],
+        &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
+        &[
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+        ],
+        &[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ],
+        &[
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+        ],
+    ],
+    b: &[
+        5179.0 / 57600.0,
+        0.0,
+        7571.0 / 16695.0,
+        393.0 / 640.0,
+        -92097.0 / 339200.0,
+        187.0 / 2100.0,
+        1.0 / 40.0,
+    ],
+};
+
+/// RK4 with its third row `a32 = 1/2 + 1e-4`: the third stage sits at
+/// `c3 = 1/2 + 1e-4`, so `sum b c = 1/2 + 1e-4 / 3`.
+const RK4_ROW_OFF: Tableau = Tableau {
+    a: &[&[], &[0.5], &[0.0, 0.5 + 1e-4], &[0.0, 0.0, 1.0]],
+    b: &[1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+};
+
+fn meta(id: &'static str, order: u32, stages: u32) -> SchemeMeta {
+    SchemeMeta::new(id, id, order).force_evaluations(stages)
+}
+
+fn probe64(tableau: &'static Tableau, order: u32, through: u32) -> ConditionProbe {
+    let stages = tableau.b.len() as u32;
+    let scheme = BlackBox::new(meta("rk-f64", order, stages), |q, v, h, f| {
+        runge_kutta::<f64>(tableau, q, v, h, f)
+    });
+    probe_conditions::<_, 2>(&scheme, through).unwrap()
+}
+
+fn probe32(tableau: &'static Tableau, order: u32, through: u32) -> ConditionProbe {
+    let stages = tableau.b.len() as u32;
+    let scheme = BlackBox::new(meta("rk-f32", order, stages), |q, v, h, f| {
+        runge_kutta::<f32>(tableau, q, v, h, f)
+    });
+    probe_conditions::<_, 2>(&scheme, through).unwrap()
+}
+
+/// The named condition is `sum b_i c_i^m = 1/(m+1)` and its defect is the
+/// tableau's within the probe's allowance.
+fn names_bushy(probe: &ConditionProbe, m: i32, expected: f64) {
+    let first = probe
+        .first_violated()
+        .unwrap_or_else(|| panic!("{}", probe.describe()));
+    let power = match m {
+        1 => " c_i".to_string(),
+        _ => format!(" c_i^{m}"),
+    };
+    assert_eq!(first.condition, format!("sum b_i{power} = 1/{}", m + 1));
+    assert_eq!(first.order, (m + 1) as u32);
+    assert!(
+        (first.defect - expected).abs() <= first.allowance,
+        "{}: expected a defect of {expected:e}",
+        first.describe()
+    );
+}
+
+#[test]
+fn a_correct_tableau_holds_every_probed_condition_in_both_precisions() {
+    for probe in [probe64(&RK4, 4, 4), probe32(&RK4, 4, 4)] {
+        assert!(probe.first_violated().is_none(), "{}", probe.describe());
+    }
+    // single precision's allowance is the larger by about (eps_32 /
+    // eps_64)^(2/3) = 2.5e5 for a first difference
+    let wide = probe32(&RK4, 4, 4).conditions[2].allowance;
+    let narrow = probe64(&RK4, 4, 4).conditions[2].allowance;
+    assert!(wide > 1e4 * narrow, "{wide:e} against {narrow:e}");
+}
+
+#[test]
+fn rk4_fails_first_the_fifth_order_bushy_condition_by_its_own_defect() {
+    let expected = RK4.bushy_defect(4);
+    assert!((expected - 1.0 / 120.0).abs() < 1e-15); // 5/24 - 1/5
+    names_bushy(&probe64(&RK4, 4, 5), 4, expected);
+    names_bushy(&probe32(&RK4, 4, 5), 4, expected);
+}
+
+#[test]
+fn embedded_weights_in_place_of_the_fifth_order_ones_are_named() {
+    // the fourth-order conditions hold, the first of the fifth fails
+    let expected = DOPRI_EMBEDDED.bushy_defect(4);
+    assert!((1e-4..1e-3).contains(&-expected), "{expected:e}");
+    names_bushy(&probe64(&DOPRI_EMBEDDED, 5, 5), 4, expected);
+    // In single precision the allowance (6e-4 or so) is of the size of the
+    // defects: no condition of order 4 or less may fail, and both bushy
+    // conditions of order 5 must read the tableau's values.
+    let single = probe32(&DOPRI_EMBEDDED, 5, 5);
+    assert!(single.holds_through() >= 4, "{}", single.describe());
+    let read = |text: &str| {
+        single
+            .conditions
+            .iter()
+            .find(|c| c.condition == text)
+            .unwrap()
+    };
+    for (condition, defect) in [
+        (read("sum b_i c_i^4 = 1/5"), expected),
+        (
+            read("sum b_bar_i c_i^3 = 1/20"),
+            DOPRI_EMBEDDED.position_defect(3),
+        ),
+    ] {
+        assert!(
+            (condition.defect - defect).abs() <= condition.allowance,
+            "{}: the tableau's is {defect:e}",
+            condition.describe()
+        );
+    }
+}
+
+#[test]
+fn a_row_sum_off_its_node_is_named_at_order_two() {
+    let expected = RK4_ROW_OFF.bushy_defect(1);
+    assert!((expected - 1e-4 / 3.0).abs() < 1e-12);
+    names_bushy(&probe64(&RK4_ROW_OFF, 4, 4), 1, expected);
+}
+
+/// A composition of velocity Verlet steps with weights `w`, on `f64`
+/// slices: consistent only if the weights sum to 1.
+fn composed(weights: &'static [f64]) -> impl Fn(&mut [f64], &mut [f64], f64, &Force<f64>) {
+    move |q, v, h, force| {
+        let n = q.len();
+        let mut a = [0.0; 2];
+        for w in weights {
+            force(q, &mut a[..n]);
+            for d in 0..n {
+                v[d] += 0.5 * w * h * a[d];
+                q[d] += w * h * v[d];
+            }
+            force(q, &mut a[..n]);
+            for d in 0..n {
+                v[d] += 0.5 * w * h * a[d];
+            }
+        }
+    }
+}
+
+#[test]
+fn weights_that_do_not_sum_to_one_are_named_as_inconsistency() {
+    const W: &[f64] = &[0.7, -0.3, 0.7];
+    let scheme = BlackBox::new(meta("short-composition", 4, 6), composed(W));
+    let probe = probe_conditions::<_, 2>(&scheme, 4).unwrap();
+    let first = probe.first_violated().unwrap();
+    assert_eq!((first.order, first.condition.as_str()), (1, "consistency"));
+    assert!((first.measured - 1.1).abs() < 1e-14, "{}", first.describe());
+    assert!(
+        first
+            .describe()
+            .contains("fails: the step advances positions by 1.1")
+    );
+    // and the order study's failure names it
+    let record = global_order(&scheme, &KeplerCircular, &OrderSpec::default()).unwrap();
+    assert!(!record.passed());
+    assert!(
+        record
+            .reason
+            .contains("consistency fails: the step advances positions by 1.1"),
+        "{}",
+        record.reason
+    );
+}
+
+#[test]
+fn a_step_rounded_to_single_precision_is_inconsistent_in_double() {
+    // the step's size in f32, the rest in f64: W = fl32(h) / h
+    let scheme = BlackBox::new(meta("verlet-f32-h", 2, 2), |q, v, h: f64, force| {
+        composed(&[1.0])(q, v, f64::from(h as f32), force)
+    });
+    let probe = probe_conditions::<_, 2>(&scheme, 2).unwrap();
+    let first = probe.first_violated().unwrap();
+    let h = probe.h;
+    assert_eq!(first.condition, "consistency");
+    assert!((first.defect - (f64::from(h as f32) / h - 1.0)).abs() <= first.allowance);
+}
+
+/// The distinct nodes of `tableau` with a nonzero weight, and the weights
+/// summed over the stages that share a node, ascending.
+fn rule_of(tableau: &Tableau) -> Vec<(f64, f64)> {
+    let mut rule: Vec<(f64, f64)> = Vec::new();
+    for (c, b) in tableau.nodes().into_iter().zip(tableau.b) {
+        match rule.iter_mut().find(|(x, _)| (x - c).abs() < 1e-12) {
+            Some((_, w)) => *w += b,
+            None => rule.push((c, *b)),
+        }
+    }
+    rule.retain(|(_, b)| *b != 0.0);
+    rule.sort_by(|x, y| x.0.total_cmp(&y.0));
+    rule
+}
+
+#[test]
+fn the_weights_and_nodes_of_a_black_box_are_recovered_from_its_moments() {
+    for (tableau, name) in [(&RK4, "rk4"), (&DOPRI_EMBEDDED, "dopri-embedded")] {
+        let stages = tableau.b.len() as u32;
+        let scheme = BlackBox::new(meta(name, 4, stages), |q, v, h, f| {
+            runge_kutta::<f64>(tableau, q, v, h, f)
+        });
+        let recovered = recover_quadrature::<_, 2>(&scheme).unwrap();
+        let want = rule_of(tableau);
+        // Dormand-Prince: 7 stages, 5 nodes of nonzero weight (b2 = 0, and
+        // c6 = c7 = 1 merge)
+        assert_eq!(recovered.resolved, want.len(), "{}", recovered.describe());
+        for (i, (c, b)) in want.iter().enumerate() {
+            assert!(
+                (recovered.nodes[i] - c).abs() <= recovered.node_bounds[i]
+                    && (recovered.weights[i] - b).abs() <= recovered.weight_bounds[i],
+                "{name}: {}: want ({c}, {b})",
+                recovered.describe()
+            );
+        }
+    }
+}
+#[test]
+fn single_precision_resolves_simpsons_rule_within_its_wider_bounds() {
+    let scheme = BlackBox::new(meta("rk4-f32", 4, 4), |q, v, h, f| {
+        runge_kutta::<f32>(&RK4, q, v, h, f)
+    });
+    let recovered = recover_quadrature::<_, 2>(&scheme).unwrap();
+    assert_eq!(recovered.resolved, 3, "{}", recovered.describe());
+    for (i, (c, b)) in rule_of(&RK4).iter().enumerate() {
+        assert!(
+            (recovered.nodes[i] - c).abs() <= recovered.node_bounds[i]
+                && (recovered.weights[i] - b).abs() <= recovered.weight_bounds[i],
+            "{}",
+            recovered.describe()
+        );
+    }
+}
