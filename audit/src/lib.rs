@@ -500,7 +500,12 @@ pub fn disagreements(audit: &Audit) -> Vec<String> {
     match audit {
         Audit::Fixed(a) => {
             for row in &a.rows {
-                let named = a.expected.named.as_ref();
+                // only a failed order claim is probed
+                let named = a
+                    .expected
+                    .named
+                    .as_ref()
+                    .filter(|_| row.order == Verdict::Fail);
                 if let Some(miss) = named.and_then(|n| probe_disagrees(n, row)) {
                     out.push(format!("{} {} on {}: {miss}", p.krate, p.method, row.scene));
                 }

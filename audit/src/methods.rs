@@ -1005,9 +1005,17 @@ pub fn peroxide_gl4_broyden() -> Audit {
             evidence: &[(
                 &[Order, Symplectic, Symmetric, Energy],
                 "compared step by step with the exact GL4 map of q'' = -q (the (2,2) Pade approximant R(z) = (1 + z/2 + z^2/12)/(1 - z/2 + z^2/12)), from (q, v) = (1, 0) to T = 1 at iteration tolerance 1e-14, the crate's step departs from it by up to 1.5e-10 at h = 1/16, 9.7e-12 at 1/64, 5.0e-16 at 1/512 and 3.8e-14 at 1/1024, irregularly, as the calls per step fall from 11 to 9 to 7 (fewer iterations); its error at T = 1 is 6.5x GL4's at h = 1/64; at h = 1/1024 it is 3.9e-11, 317x the GL4 map iterated in doubles (1.2e-13, round-off: GL4's own truncation error there, h^4 T / 720 in phase, is 1.26e-15) and 3.1e4x that truncation error (reproduce: `cargo test --release --test independent peroxide_gl4_broyden -- --nocapture`)",
+            ), (
+                &[Order],
+                "under a weak force the solve stops before the stages feel each other: one step of h = 0.9 on q'' = c q from (q, v) = (1, 0) has no part quadratic in c at all, (q1(c) + q1(-c) - 2 q1(0)) / (2 c^2) = 0 exactly at c = 1.4e-4 and 1e-3, where the GL4 map's is h^4/24 = 2.73e-2 (the crate's is that from c = 1e-2 on): the chain condition sum b_bar_i a_bar_ij = 1/24, which that part measures, fails by -1/24 under such forces (reproduce: `cargo test --release --test independent peroxide_gl4_broyden_weak_force -- --nocapture`)",
             )],
             named: None,
-        },
+        }
+        .naming(
+            "sum b_bar_i a_bar_ij = 1/24",
+            -1.0 / 24.0,
+            "no part quadratic in c on q'' = c q for |c| <= 1e-3, independent.rs"
+        ),
     ))
 }
 

@@ -457,3 +457,65 @@ fn russell_equal_steps() {
     assert!(y[0] > 1.0 + 1e-3, "the run now ends at x1: {}", y[0]);
     assert!(other > 0 && overshoot > 0);
 }
+
+/// `q'' = c q`, counted as nothing: the probe's linear force.
+struct Linear {
+    c: f64,
+}
+
+impl ODEProblem for Linear {
+    fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) -> anyhow::Result<()> {
+        dy[0] = y[1];
+        dy[1] = self.c * y[0];
+        Ok(())
+    }
+}
+
+/// One step of the exact GL4 map on `q'' = c q`: with `A = [[0, 1], [c,
+/// 0]]`, `A^2 = c I`, the (2,2) Padé approximant is `(I - hA/2 + c h^2/12)^-1
+/// (I + hA/2 + c h^2/12)`, a 2x2 solve.
+fn gl4_linear(y: [f64; 2], h: f64, c: f64) -> [f64; 2] {
+    let d = 1.0 + c * h * h / 12.0;
+    let r = [d * y[0] + 0.5 * h * y[1], 0.5 * h * c * y[0] + d * y[1]];
+    // (d I - hA/2) x = r
+    let det = d * d - 0.25 * h * h * c;
+    [
+        (d * r[0] + 0.5 * h * r[1]) / det,
+        (0.5 * h * c * r[0] + d * r[1]) / det,
+    ]
+}
+
+/// GL4 with the Broyden solve under a weak linear force: one step of h = 0.9
+/// from (q, v) = (1, 0) on `q'' = c q`, and the part of `q1` quadratic in
+/// `c`, `(q1(c) + q1(-c) - 2 q1(0)) / (2 c^2)`, against the exact GL4 map's
+/// (GL4 is of order 4, so its part is the flow's, `h^4/24 = 2.73e-2`). The
+/// crate's solve stops on an absolute test, so under a force of 1e-4 it
+/// stops before the quadratic part is formed.
+#[test]
+fn peroxide_gl4_broyden_weak_force() {
+    let gl4 = GL4::new(ImplicitSolver::Broyden, GL4_TOLERANCE, GL4_SWEEPS);
+    let h = 0.9;
+    let step = |c: f64| {
+        let mut y = vec![1.0, 0.0];
+        gl4.step(&Linear { c }, 0.0, &mut y, h).expect("a GL4 step");
+        y[0]
+    };
+    let mut parts = Vec::new();
+    for c in [1.4e-4, 1e-3, 1e-2, 1e-1] {
+        let crate_part = (step(c) + step(-c) - 2.0 * step(0.0)) / (2.0 * c * c);
+        let map = |c: f64| gl4_linear([1.0, 0.0], h, c)[0];
+        let map_part = (map(c) + map(-c) - 2.0 * map(0.0)) / (2.0 * c * c);
+        println!(
+            "c = {c:.1e}: the crate's part quadratic in c {crate_part:.4e}, the GL4 map's {map_part:.4e}, h^4/24 = {:.4e}",
+            h.powi(4) / 24.0
+        );
+        parts.push((crate_part, map_part));
+    }
+    // the map's own part is the flow's to within its c^2 terms
+    assert!((parts[0].1 / (h.powi(4) / 24.0) - 1.0).abs() < 1e-3);
+    // under the weakest force the crate's step misses most of it
+    assert!(
+        (parts[0].0 - parts[0].1).abs() > 0.5 * parts[0].1,
+        "the Broyden step now forms the quadratic part under a weak force: {parts:?}"
+    );
+}
