@@ -340,3 +340,78 @@ fn single_precision_resolves_simpsons_rule_within_its_wider_bounds() {
         );
     }
 }
+
+#[test]
+fn a_probe_that_finds_nothing_says_so_and_how_far_it_looked() {
+    let probe = probe64(&RK4, 4, 4);
+    assert_eq!(probe.h, 0.9);
+    // a black box's start evaluates nothing: the four stages of one step
+    assert_eq!(probe.evaluations, 4);
+    assert_eq!(probe.holds_through(), 4);
+    // consistency, then per order the velocity's and the position's bushy
+    // condition, and the chain conditions at orders 3 and 4: 1 + 1 + 2 + 3 + 3
+    assert_eq!(probe.conditions.len(), 10);
+    assert!(
+        probe.describe().contains(
+            "the 10 bushy and chain conditions through order 4 hold, so the fault lies in a \
+             condition they do not separate"
+        ),
+        "{}",
+        probe.describe()
+    );
+    assert!(
+        probe.conditions[0]
+            .describe()
+            .starts_with("consistency holds: the step advances positions by 1.0")
+    );
+    assert!(
+        probe.conditions[1]
+            .describe()
+            .starts_with("order 1 condition sum b_i = 1 holds, off by")
+    );
+    let beyond = probe64(&RK4, 4, 5);
+    assert_eq!(beyond.holds_through(), 4);
+    assert!(beyond.describe().starts_with(
+        "probing the first step from a synchronised state: order 5 condition sum b_i c_i^4 = 1/5 fails by 8.3e-3"
+    ));
+}
+
+#[test]
+fn a_step_that_cannot_be_probed_gives_no_probe() {
+    let panics = BlackBox::new(
+        meta("panics", 2, 1),
+        |_: &mut [f64], _: &mut [f64], _: f64, _: &Force<f64>| {
+            if true {
+                panic!("no step today")
+            }
+        },
+    );
+    assert!(probe_conditions::<_, 1>(&panics, 2).is_none());
+    assert!(recover_quadrature::<_, 1>(&panics).is_none());
+    let overflows = BlackBox::new(
+        meta("overflows", 2, 1),
+        |q: &mut [f64], _: &mut [f64], _: f64, _: &Force<f64>| {
+            q[0] = f64::NAN;
+        },
+    );
+    assert!(probe_conditions::<_, 1>(&overflows, 2).is_none());
+    // a multistep scheme's first step from a synchronised state is its
+    // starter, not its method
+    assert!(probe_conditions::<_, 1>(&stepladder::scheme::QUINLAN_TREMAINE8, 8).is_none());
+}
+
+#[test]
+fn a_recovered_rule_says_how_many_nodes_it_resolved_of_how_many() {
+    let scheme = BlackBox::new(meta("rk4-f64", 4, 4), |q, v, h, f| {
+        runge_kutta::<f64>(&RK4, q, v, h, f)
+    });
+    let rule = recover_quadrature::<_, 2>(&scheme).unwrap();
+    assert_eq!((rule.resolved, rule.stages, rule.moments.len()), (3, 4, 6));
+    assert!(
+        rule.describe().starts_with(
+            "3 distinct nodes resolved of at most 4 (from sum b_i c_i^m, m = 0 .. 5): c = ("
+        ),
+        "{}",
+        rule.describe()
+    );
+}
