@@ -415,3 +415,123 @@ fn a_recovered_rule_says_how_many_nodes_it_resolved_of_how_many() {
         rule.describe()
     );
 }
+
+/// RK4 with `b1` larger by 1.5e-9: `sum b = 1 + 1.5e-9`.
+const RK4_WEIGHT_OFF: Tableau = Tableau {
+    a: RK4.a,
+    b: &[1.0 / 6.0 + 1.5e-9, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+};
+
+/// RK4 with its third row moved along its own row sum, `a31 = -6e-9`,
+/// `a32 = 1/2 + 6e-9`: every node stays, and `sum b_i a_ij c_j` (for a
+/// first-order method both the chain condition `sum b_i a_bar_ij` and `sum
+/// b_bar_i c_i`) moves by `b3 a31' c1 + b3 a32' c2 - ... = 6e-9 / 6 = 1e-9`.
+const RK4_CHAIN_OFF: Tableau = Tableau {
+    a: &[&[], &[0.5], &[-6e-9, 0.5 + 6e-9], &[0.0, 0.0, 1.0]],
+    b: RK4.b,
+};
+
+/// The probe resolves defects of 1e-9, several allowances: `sum b = 1`
+/// (allowance about 4e-10 for four evaluations in `f64`) and the order-3
+/// chain condition (about 2e-11: its differences are taken from a state at
+/// rest, whose velocity is of the force's size).
+#[test]
+fn defects_of_a_billionth_are_resolved() {
+    let weight = probe64(&RK4_WEIGHT_OFF, 4, 4);
+    let sum = weight
+        .conditions
+        .iter()
+        .find(|c| c.condition == "sum b_i = 1")
+        .unwrap();
+    assert!(
+        !sum.holds() && (sum.defect - 1.5e-9).abs() <= sum.allowance,
+        "{}",
+        sum.describe()
+    );
+    let chain = probe64(&RK4_CHAIN_OFF, 4, 4);
+    for text in ["sum b_i a_bar_ij = 1/6", "sum b_bar_i c_i = 1/6"] {
+        let c = chain
+            .conditions
+            .iter()
+            .find(|c| c.condition == text)
+            .unwrap();
+        assert!(
+            !c.holds() && (c.defect - 1e-9).abs() <= c.allowance,
+            "{}",
+            c.describe()
+        );
+    }
+    // and nothing else of order 3 or less moves
+    assert_eq!(
+        chain.first_violated().unwrap().order,
+        3,
+        "{}",
+        chain.describe()
+    );
+}
+
+/// Every allowance holds at least what the derivation in
+/// `probe_conditions` puts in it: the rounding of the differences at `c/2`
+/// plus two thirds of the roundings at `c` and `c/2` that the truncation
+/// estimate carries. With `units = (n + 1) eps` and a probed value `y`, the
+/// rounding of a first difference at `c/2` is `units |2 y| / c` and at `c`
+/// half that, so the allowance is at least `2 units |2 y| / c`; `y` is the
+/// velocity, about 1, or the position, about `h`, and `c = units^(1/3)`.
+/// For the chain conditions (second differences, `c = units^(1/4)`): from
+/// rest the velocity is about `c h` at `c` (at least `4 units h / c`), the
+/// position about 1 (at least `(11/6) 8 units / c^2`). Each is scaled by
+/// `h^-order`, as its condition is.
+#[test]
+fn every_allowance_covers_the_rounding_of_its_differences() {
+    let probe = probe64(&RK4, 4, 8);
+    let units = 5.0 * f64::EPSILON; // four evaluations, one drift
+    let h = probe.h;
+    let (first, second) = (units.powf(1.0 / 3.0), units.powf(0.25));
+    for c in &probe.conditions {
+        let scale = h.powi(c.order as i32);
+        let floor = match c.condition.as_str() {
+            "consistency" => units,
+            "sum b_i a_bar_ij = 1/6" => 4.0 * units * h / second / scale,
+            "sum b_bar_i a_bar_ij = 1/24" => 11.0 / 6.0 * 8.0 * units / (second * second) / scale,
+            text if text.starts_with("sum b_bar_i") => 4.0 * units * h / first / scale,
+            _ => 4.0 * units / first / scale,
+        };
+        assert!(
+            c.allowance >= floor * (1.0 - 1e-6),
+            "{}: the derivation's floor is {floor:.3e}",
+            c.describe()
+        );
+    }
+    // consistency's allowance grows with the advance it measures: a
+    // composition advancing by 1.1 h, three Verlet steps of two
+    // evaluations each
+    let scheme = BlackBox::new(meta("long-composition", 4, 6), composed(&[0.7, -0.3, 0.7]));
+    let consistency = &probe_conditions::<_, 1>(&scheme, 1).unwrap().conditions[0];
+    assert!(consistency.allowance >= 7.0 * f64::EPSILON * 1.1 * (1.0 - 1e-6));
+}
+
+/// The order study probes a failed claim only: a pass carries no probe, and
+/// a breakdown (a step that panics below h = 1e-2, which the probe's step
+/// of 0.9 would not meet) is reported as such, unprobed.
+#[test]
+fn only_a_failed_claim_without_a_breakdown_is_probed() {
+    use stepladder::scene::Harmonic;
+    let pass = global_order(
+        &stepladder::scheme::VELOCITY_VERLET,
+        &Harmonic::default(),
+        &OrderSpec::default(),
+    )
+    .unwrap();
+    assert!(pass.passed() && pass.probe.is_none(), "{}", pass.reason);
+    assert!(!pass.reason.contains("probing"), "{}", pass.reason);
+    let breaks = BlackBox::new(meta("breaks-below-1e-2", 2, 2), |q, v, h: f64, force| {
+        assert!(h >= 1e-2, "a step of {h} is too small");
+        composed(&[1.0])(q, v, h, force)
+    });
+    let record = global_order(&breaks, &Harmonic::default(), &OrderSpec::default()).unwrap();
+    assert!(
+        record.breakdown.is_some() && record.probe.is_none(),
+        "{}",
+        record.reason
+    );
+}

@@ -455,6 +455,31 @@ mod tests {
     use super::*;
     use crate::scheme::{EULER_CROMER, Euler, FOREST_RUTH, PEFRL, Rk4, VELOCITY_VERLET};
 
+    /// The probe force is minus the gradient of its potential (checked by
+    /// central differences along each coordinate), in every dimension.
+    #[test]
+    fn the_probe_force_is_its_potentials_gradient() {
+        fn check<const D: usize>() {
+            let force = ProbeForce::<D> { c: 0.3, power: 3 };
+            let q = SVector::<f64, D>::from_fn(|i, _| 0.2 + 0.1 * i as f64);
+            let a = force.acceleration(&q);
+            for i in 0..D {
+                let step = 1e-5;
+                let (mut up, mut down) = (q, q);
+                up[i] += step;
+                down[i] -= step;
+                let slope = (force.potential(&up) - force.potential(&down)) / (2.0 * step);
+                assert!(
+                    (a[i] + slope).abs() < 1e-9,
+                    "D = {D}, i = {i}: {} against {slope}",
+                    a[i]
+                );
+            }
+        }
+        check::<1>();
+        check::<3>();
+    }
+
     #[test]
     fn the_catalogue_holds_every_condition_through_its_order() {
         let verlet = probe_conditions::<_, 1>(&VELOCITY_VERLET, 2).unwrap();

@@ -230,6 +230,22 @@ mod tests {
         }
     }
 
+    /// Forest-Ruth's four kicks over half a step: nodes (1 - x)/2, 0, 1/2,
+    /// x/2 (x = 1/(2 - 2^(1/3))) with weights -0.18, 0.68, 0.68, -0.18. The
+    /// three-node rule with their first six moments has the nodes 1/4 and
+    /// 1/4 +- 0.55 i, which is no rule; the four-node one is theirs.
+    #[test]
+    fn a_rule_with_complex_nodes_is_refused() {
+        let x = 1.0 / (2.0 - 2f64.cbrt());
+        let c = [(1.0 - x) / 2.0, 0.0, 0.5, x / 2.0];
+        let b = [(1.0 - x) / 2.0, x / 2.0, x / 2.0, (1.0 - x) / 2.0];
+        let moments = moments_of(&c, &b, 8, 1e-13);
+        assert!(resolves(&moments, 3) && resolves(&moments, 4));
+        assert!(fit(&moments, 3).is_none());
+        let rule = fit(&moments, 4).unwrap();
+        assert!((rule.nodes[0] - c[0]).abs() < 1e-9, "{rule:?}");
+    }
+
     #[test]
     fn splittings_show_their_kicks() {
         // velocity Verlet: kicks 1/2 at 0 and 1
