@@ -70,8 +70,9 @@
 //! | `rkn6-dormand-prince` | 6 | Runge-Kutta-Nyström |
 //!
 //! Beside it: compensated-summation Verlet forms, Quinlan and Tremaine's
-//! eighth-order multistep method, the DPRKN8 method and the adaptive
-//! DPRKN6(4) and DPRKN8(6) pairs.
+//! eighth-order multistep method, the DPRKN8 and DPRKN12 methods and the
+//! adaptive DPRKN6(4), DPRKN8(6) and DPRKN12(10) pairs, the last two also
+//! with compensated state updates.
 #![warn(missing_docs)]
 
 pub mod error;

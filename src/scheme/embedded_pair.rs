@@ -27,6 +27,13 @@
 //!   for any smooth change and still a bounded retreat where the estimate is
 //!   non-finite.
 //!
+//! With compensated sums ([`EmbeddedPair::with_compensated_sums`]) the
+//! state is carried as `value + low` and each step's increments are added
+//! by Knuth's TwoSum ([`crate::scheme::Kahan`]): the step no longer loses
+//! `eps |q|` each time it adds a small increment to a large coordinate,
+//! which is what stops an uncompensated pair's error from falling below
+//! about `eps |q| sqrt(steps)` however tight the tolerance.
+//!
 //! The exponent `1/(q+1)` is the one the estimate's power dictates. It
 //! sets how fast the feedback settles, not where: whatever the exponent,
 //! the accepted steps settle where the estimate is a fixed fraction of the
@@ -43,7 +50,7 @@ use super::adaptive::{
 };
 use crate::error::Error;
 use crate::scene::Scene;
-use crate::scheme::{DPRKN6, DPRKN8, NystromTable, SchemeVisitor};
+use crate::scheme::{DPRKN6, DPRKN8, DPRKN12, Kahan, NystromTable, SchemeVisitor, Summed};
 use crate::state::State;
 use std::time::Instant;
 
@@ -95,6 +102,8 @@ pub struct EmbeddedPair<const S: usize> {
     pub table: &'static NystromTable<S>,
     /// The controller.
     pub controller: Controller,
+    /// Whether the state's updates are compensated sums.
+    pub compensated: bool,
 }
 
 /// Dormand and Prince's RKN6(4) with the standard controller.
@@ -104,6 +113,19 @@ pub const DPRKN6_ADAPTIVE: EmbeddedPair<6> = EmbeddedPair::new("DPRKN6(4) adapti
 /// eight force evaluations a step for order eight, against the twelve of
 /// DOP853 on `(q, v)`.
 pub const DPRKN8_ADAPTIVE: EmbeddedPair<9> = EmbeddedPair::new("DPRKN8(6) adaptive", &DPRKN8);
+
+/// DPRKN8(6) with compensated state updates.
+pub const DPRKN8_COMPENSATED: EmbeddedPair<9> =
+    EmbeddedPair::new("DPRKN8(6) compensated", &DPRKN8).with_compensated_sums();
+
+/// Dormand, El-Mikkawy and Prince's RKN12(10) with the standard controller:
+/// seventeen force evaluations a step for order twelve.
+pub const DPRKN12_ADAPTIVE: EmbeddedPair<17> = EmbeddedPair::new("DPRKN12(10) adaptive", &DPRKN12);
+
+/// RKN12(10) with compensated state updates: the pair for tolerances near
+/// the round-off of the state.
+pub const DPRKN12_COMPENSATED: EmbeddedPair<17> =
+    EmbeddedPair::new("DPRKN12(10) compensated", &DPRKN12).with_compensated_sums();
 
 impl<const S: usize> EmbeddedPair<S> {
     /// The pair of `table` with the standard controller for its estimate.
@@ -116,6 +138,15 @@ impl<const S: usize> EmbeddedPair<S> {
             name,
             table,
             controller: Controller::standard(embedded.order + 1),
+            compensated: false,
+        }
+    }
+
+    /// The same pair with its state carried as compensated sums.
+    pub const fn with_compensated_sums(self) -> Self {
+        Self {
+            compensated: true,
+            ..self
         }
     }
 }
@@ -204,6 +235,8 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
         let clock = Instant::now();
         let fsal = self.table.first_same_as_last();
         let mut y = *start;
+        // what rounding y dropped, with compensated sums (else zero)
+        let mut low = State::new(nalgebra::SVector::zeros(), nalgebra::SVector::zeros());
         let mut a = scene.acceleration(&y.q);
         let mut evaluations = 1u64;
         let mut h = self.first_step(scene, &y, &a, tol, t_end);
@@ -234,10 +267,32 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
                 run.end = RunEnd::StepUnderflow;
                 break;
             }
-            let trial = self.table.attempt(scene, &y, a, h);
+            let trial = if self.compensated {
+                let mut q = Summed {
+                    value: y.q,
+                    low: low.q,
+                };
+                let mut v = Summed {
+                    value: y.v,
+                    low: low.v,
+                };
+                let step = self
+                    .table
+                    .attempt_summed::<Kahan, f64, D, P>(scene, &mut q, &mut v, a, h);
+                (
+                    State::new(q.value, v.value),
+                    State::new(q.low, v.low),
+                    step.a_end,
+                    step.error,
+                )
+            } else {
+                let step = self.table.attempt(scene, &y, a, h);
+                (step.state, low, step.a_end, step.error)
+            };
+            let (state, new_low, a_end, error) = trial;
             evaluations += S as u64 - 1;
-            let err = scaled_norm(&trial.error, &y, &trial.state, tol);
-            let finite = trial.state.is_finite();
+            let err = scaled_norm(&error, &y, &state, tol);
+            let finite = state.is_finite();
             if err <= 1.0 && finite {
                 let cap = if just_rejected {
                     1.0
@@ -245,9 +300,10 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
                     self.controller.max_growth
                 };
                 t = if last { t_end } else { t + h };
-                y = trial.state;
+                y = state;
+                low = new_low;
                 a = if fsal {
-                    trial.a_end
+                    a_end
                 } else {
                     evaluations += 1;
                     scene.acceleration(&y.q)

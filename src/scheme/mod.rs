@@ -42,17 +42,20 @@ pub use compensated::{
     LEAPFROG_COMPENSATED, STORMER_VERLET_COMPENSATED, VELOCITY_VERLET_COMPENSATED,
 };
 pub use composition::{FOREST_RUTH, KAHAN_LI8, VerletComposition, YOSHIDA6};
-pub use embedded_pair::{Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, EmbeddedPair};
+pub use embedded_pair::{
+    Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, DPRKN8_COMPENSATED, DPRKN12_ADAPTIVE,
+    DPRKN12_COMPENSATED, EmbeddedPair,
+};
 pub use euler::Euler;
 pub use implicit::{
     ImplicitMidpoint, ImplicitRk, MAX_ITERATIONS, MidpointCarry, ROUND_OFF_UNITS, StageCarry,
 };
 pub use multistep::{MultistepCarry, QUINLAN_TREMAINE8, SymmetricMultistep};
-pub use nystrom_rk::{Embedded, NystromStep, NystromTable};
+pub use nystrom_rk::{Embedded, NystromStep, NystromTable, SummedCarry, SummedStep};
 pub use nystrom_splitting::{
     BLANES_MOAN_SRKN11, MCLACHLAN_ATELA4, MCLACHLAN_SB3A4, MCLACHLAN_SB3A5,
 };
-pub use nystrom_tables::{DPRKN6, DPRKN8, NYSTROM4};
+pub use nystrom_tables::{DPRKN6, DPRKN8, DPRKN12, NYSTROM4};
 pub use runge_kutta::{ExplicitRk, Rk4};
 pub use single_precision::{SingleCarry, SinglePrecision};
 pub use splitting::{

@@ -30,9 +30,15 @@ const D: usize = 2;
 /// Degree of the force polynomial: every `E_k` up to `k = DEGREE + 2`
 /// sees every elementary differential.
 pub(super) const DEGREE: usize = 7;
-/// Monomials `q1^i q2^j` with `i + j <= DEGREE`.
-const MONOMIALS: usize = (DEGREE + 1) * (DEGREE + 2) / 2;
 const POINTS: usize = 4;
+
+/// The force's degree for defects through `h^degree`: [`DEGREE`] (the
+/// problem every check through `h^9` has always used, coefficients and
+/// points included) unless more is needed, `degree - 2` beyond (11 for a
+/// twelfth-order tableau and its condition beyond).
+fn force_degree(degree: usize) -> usize {
+    DEGREE.max(degree.saturating_sub(2))
+}
 
 /// A truncated power series in `h` in double-double, and beside it in
 /// doubles the same series built from absolute values: its entries bound
@@ -78,31 +84,28 @@ impl Series {
 
 /// `q'' = a(q)` with a polynomial force and the initial points.
 struct Problem {
+    /// The force's degree.
+    degree: usize,
     /// `coefficients[c][m]` multiplies monomial `m` in component `c`.
-    coefficients: [[f64; MONOMIALS]; D],
-    /// Exponents `(i, j)` of each monomial.
-    exponents: [(usize, usize); MONOMIALS],
+    coefficients: [Vec<f64>; D],
+    /// Exponents `(i, j)` of each monomial `q1^i q2^j`, `i + j <= degree`.
+    exponents: Vec<(usize, usize)>,
     starts: [([f64; D], [f64; D]); POINTS],
 }
 
 impl Problem {
-    fn new() -> Self {
+    fn new(degree: usize) -> Self {
         let mut state = 0x5eed_0003;
-        let mut exponents = [(0, 0); MONOMIALS];
-        let mut m = 0;
-        for i in 0..=DEGREE {
-            for j in 0..=DEGREE - i {
-                exponents[m] = (i, j);
-                m += 1;
-            }
-        }
+        let exponents: Vec<(usize, usize)> = (0..=degree)
+            .flat_map(|i| (0..=degree - i).map(move |j| (i, j)))
+            .collect();
         // coefficients shrink with the degree so that the Taylor series of
         // the flow converge well beyond the steps used here
         let coefficients = std::array::from_fn(|_| {
-            std::array::from_fn(|m| {
-                let (i, j) = exponents[m];
-                uniform(&mut state) / ((1 + i + j) * (1 + i + j)) as f64
-            })
+            exponents
+                .iter()
+                .map(|&(i, j)| uniform(&mut state) / ((1 + i + j) * (1 + i + j)) as f64)
+                .collect()
         });
         let starts = std::array::from_fn(|_| {
             (
@@ -111,6 +114,7 @@ impl Problem {
             )
         });
         Problem {
+            degree,
             coefficients,
             exponents,
             starts,
@@ -122,7 +126,7 @@ impl Problem {
         let n = q[0].value.len();
         let powers: [Vec<Series>; D] = std::array::from_fn(|c| {
             let mut p = vec![Series::constant(Dd::of(1.0), n)];
-            for e in 1..=DEGREE {
+            for e in 1..=self.degree {
                 p.push(p[e - 1].times(&q[c]));
             }
             p
@@ -142,9 +146,9 @@ impl Problem {
 
     /// `a(q)` at a point.
     fn force(&self, q: &[Dd; D]) -> [Dd; D] {
-        let powers: [[Dd; DEGREE + 1]; D] = std::array::from_fn(|c| {
-            let mut p = [Dd::of(1.0); DEGREE + 1];
-            for e in 1..=DEGREE {
+        let powers: [Vec<Dd>; D] = std::array::from_fn(|c| {
+            let mut p = vec![Dd::of(1.0); self.degree + 1];
+            for e in 1..=self.degree {
                 p[e] = p[e - 1].mul(q[c]);
             }
             p
@@ -343,12 +347,12 @@ impl Method {
 
     /// The longest chain of double-double operations behind one entry of
     /// the step's series of `terms` terms. A force on series takes
-    /// `DEGREE + 1` products of `terms`-term series and a sum over
-    /// `MONOMIALS` monomials; a splitting applies at most one per flow; a
+    /// `degree + 1` products of `terms`-term series and a sum over the
+    /// force's monomials; a splitting applies at most one per flow; a
     /// Nyström stage sums up to `S` earlier stages first, and the step sums
     /// the `S` stages at the end.
-    fn operations(&self, terms: usize) -> usize {
-        let force = DEGREE + 1 + terms + MONOMIALS;
+    fn operations(&self, problem: &Problem, terms: usize) -> usize {
+        let force = problem.degree + 1 + terms + problem.exponents.len();
         match self {
             Method::Flows(flows) => flows.len() * force,
             Method::Nystrom(t) => {
@@ -421,7 +425,7 @@ fn expansion(problem: &Problem, method: &Method, degree: usize) -> Expansion {
             }
         }
     }
-    let units = UNIT * 8.0 * method.operations(terms) as f64;
+    let units = UNIT * 8.0 * method.operations(problem, terms) as f64;
     let scale = |k: usize| {
         exact
             .iter()
@@ -446,7 +450,7 @@ fn expansion(problem: &Problem, method: &Method, degree: usize) -> Expansion {
 
 /// The defects `E_1 .. E_degree` of `method` on `q'' = a(q)`.
 pub(super) fn defects(method: &Method, degree: usize) -> Vec<Defect> {
-    expansion(&Problem::new(), method, degree).defects
+    expansion(&Problem::new(force_degree(degree)), method, degree).defects
 }
 
 /// Terms of the exact flow's Taylor series summed for the reference step
@@ -522,7 +526,9 @@ fn local_error(problem: &Problem, reference: &Reference, flows: &[(Flow, f64)], 
 /// in neither `P` nor `R` and moves `e` outside. `None` when no step lets
 /// the expansion dominate its bound.
 pub(super) fn step_ratio(flows: &[(Flow, f64)], p: usize) -> Option<StepRatio> {
-    let problem = Problem::new();
+    // the expansion of this one force, whatever it does or does not see
+    // beyond h^9, is what the step is compared with
+    let problem = Problem::new(DEGREE);
     let top = p + 1 + EXTRA_TERMS;
     let d = expansion(&problem, &Method::Flows(flows.to_vec()), top);
     let power = |h: f64, k: usize| h.powi(k as i32);
@@ -542,8 +548,10 @@ pub(super) fn step_ratio(flows: &[(Flow, f64)], p: usize) -> Option<StepRatio> {
     let beyond = |h: f64| tail(|k| largest(k) * power(h, k), top);
     let (q0, v0) = problem.starts[0];
     let state_size = q0.iter().chain(&v0).fold(1.0f64, |a, &b| a.max(b.abs()));
-    let step_noise =
-        UNIT * 8.0 * (flows.len() * (DEGREE + 1 + MONOMIALS) + REFERENCE_TERMS) as f64 * state_size;
+    let step_noise = UNIT
+        * 8.0
+        * (flows.len() * (problem.degree + 1 + problem.exponents.len()) + REFERENCE_TERMS) as f64
+        * state_size;
     let reference = problem.exact(0, REFERENCE_TERMS);
     // None where a premise on a tail fails
     let range = |h: f64| {
@@ -579,7 +587,7 @@ mod tests {
     /// and not vacuous: each size is finite.
     #[test]
     fn the_exact_series_sizes_bound_their_coefficients() {
-        let problem = Problem::new();
+        let problem = Problem::new(DEGREE);
         for point in 0..POINTS {
             let (q, v) = problem.exact(point, 12);
             for (name, series) in [("q", &q), ("v", &v)] {

@@ -1,0 +1,141 @@
+//! Dormand, El-Mikkawy and Prince's RKN12(10) and the compensated pairs:
+//! the tableau's order conditions in double-double, the summed step against
+//! the plain one, and what compensation buys on the Pleiades.
+
+use stepladder::conditions;
+use stepladder::scene::{Counted, KeplerEccentric, Pleiades, Scene};
+use stepladder::scheme::{
+    AdaptiveIntegrator, DPRKN8, DPRKN8_ADAPTIVE, DPRKN8_COMPENSATED, DPRKN12, DPRKN12_ADAPTIVE,
+    DPRKN12_COMPENSATED, EmbeddedPair, NystromTable, Rounded, RunEnd,
+};
+use stepladder::state::State;
+
+/// Every Nyström condition through `h^12` holds for the main solution and
+/// the one at `h^13` fails; the embedded solution's hold through `h^10` and
+/// fail at `h^11`: the pair is 12(10), as published.
+///
+/// The main solution's `h^13` defect is 7e5 allowances, short of the 1e6
+/// with which [`conditions::Conditions::confirms`] rules out an underclaim
+/// by itself: the published tableau minimises its leading error terms, and
+/// at `h^13` the test force's degree-11 terms carry weights of 1/144. What
+/// is left to rule out, a defect that rounded coefficients could explain,
+/// `tests/check_dprkn12.py` rules out exactly: every literal is the double
+/// nearest its rational, and in exact arithmetic the `h^13` defect is 43
+/// orders of magnitude above those that vanish. So the test asks for 1e5
+/// allowances, which a coefficient right to eleven digits cannot make.
+#[test]
+fn dprkn12_has_orders_twelve_and_ten() {
+    let c = conditions::nystrom(&DPRKN12).unwrap();
+    println!("main {}", c.main);
+    assert_eq!(c.main.order(), 12, "{}", c.main);
+    assert!(c.main.at(13).unwrap().ratio() > 1e5, "{}", c.main);
+    let e = c.embedded.unwrap();
+    println!("embedded {e}");
+    assert_eq!(e.order(), 10, "{e}");
+    assert!(e.at(11).unwrap().clearly_fails(), "{e}");
+}
+
+/// One stage coefficient off in its tenth digit: stage 10's row no longer
+/// sums to `c^2/2`, so its position is off by `1e-10 a h^2` and, through
+/// the velocity weights, the velocity by a multiple of `h^3`: the check
+/// finds order two, and the defect at `h^3` far outside its allowance.
+#[test]
+fn a_mistyped_coefficient_costs_the_order() {
+    let mut t = DPRKN12;
+    t.a[9][6] *= 1.0 + 1e-10;
+    let c = conditions::nystrom(&t).unwrap();
+    assert_eq!(c.main.order(), 2, "{}", c.main);
+    assert!(c.main.at(3).unwrap().ratio() > 1e2, "{}", c.main);
+}
+
+/// The increments summed apart and added once (the summed step with
+/// rounded sums) give the tableau's map: the plain step and the summed one
+/// agree to a few units of rounding of the coordinates, `eps |y|` per step,
+/// on an eccentric orbit, for a first-same-as-last table and for one
+/// without.
+#[test]
+fn the_summed_step_is_the_tableau_map() {
+    fn agree<const S: usize>(t: &NystromTable<S>) {
+        let scene = KeplerEccentric::default();
+        let y = scene.initial();
+        let a0 = scene.acceleration(&y.q);
+        let h = scene.period() / 50.0;
+        let plain = t.attempt(&scene, &y, a0, h);
+        let (mut q, mut v) = (y.q, y.v);
+        let summed = t.attempt_summed::<Rounded, f64, 2, _>(&scene, &mut q, &mut v, a0, h);
+        let moved = (plain.state.q - y.q).norm() + (plain.state.v - y.v).norm();
+        let diff = (plain.state.q - q).norm() + (plain.state.v - v).norm();
+        // S terms rounded at |y| in the plain form, one in the summed one
+        let allowance = (S + 2) as f64 * f64::EPSILON * (y.q.norm() + y.v.norm());
+        assert!(moved > 1e3 * allowance, "{moved}");
+        assert!(diff <= allowance, "{} {diff} {allowance}", t.meta.id);
+        assert_eq!(plain.error, summed.error);
+        assert_eq!(plain.a_end, summed.a_end);
+    }
+    agree(&DPRKN8);
+    agree(&DPRKN12);
+}
+
+/// The compensated pairs spend exactly what the plain ones do: a step
+/// tried costs `S - 1` evaluations, an accepted step of a table that is not
+/// first same as last one more, the start two.
+#[test]
+fn compensated_pairs_count_like_the_plain_ones() {
+    fn count<const S: usize>(pair: &EmbeddedPair<S>, per_accepted: u64) {
+        let scene = Counted::new(KeplerEccentric::default());
+        let run = pair.run(&scene, 2.5 * scene.period(), 1e-12).unwrap();
+        assert_eq!(run.end, RunEnd::Reached);
+        assert_eq!(run.evaluations, scene.evaluations());
+        let tried = run.accepted + run.rejected;
+        assert_eq!(
+            run.evaluations,
+            2 + (S as u64 - 1) * tried + per_accepted * run.accepted
+        );
+    }
+    count(&DPRKN8_COMPENSATED, 0);
+    count(&DPRKN12_ADAPTIVE, 1);
+    count(&DPRKN12_COMPENSATED, 1);
+}
+
+/// The error of a Pleiades run to `t = 3` at the published state (itself
+/// within 1e-14 of a quadruple-precision integration).
+fn pleiades_error<const S: usize>(pair: &EmbeddedPair<S>, tol: f64) -> f64 {
+    let stars = Pleiades::new();
+    let run = pair.run(&stars, Pleiades::PUBLISHED_TIME, tol).unwrap();
+    let end: State<14> = run.trajectory.last().unwrap().1;
+    stars.phase_distance(&end, &stars.published_end())
+}
+
+/// Why compensation: a Pleiades run of a thousand-odd steps adds its
+/// increments to coordinates of order one, rounding each by about `eps/2`;
+/// the close encounters amplify those roundings by a few hundred, so no
+/// tolerance takes the plain pairs below about 1e-11, the smallest target
+/// of the race. Compensated, a step loses only the rounding of its
+/// increments (`h w` times less): both pairs get below 1e-12, the
+/// twelfth-order one at fewer evaluations.
+#[test]
+fn on_the_pleiades_only_compensated_pairs_reach_below_1e_12() {
+    for tol in [1e-12, 1e-13, 1e-14, 1e-15, 1e-16] {
+        for e in [
+            pleiades_error(&DPRKN8_ADAPTIVE, tol),
+            pleiades_error(&DPRKN12_ADAPTIVE, tol),
+        ] {
+            assert!(e > 1e-12, "{tol:e}: {e:e}");
+        }
+    }
+    let e8 = pleiades_error(&DPRKN8_COMPENSATED, 1e-13);
+    let e12 = pleiades_error(&DPRKN12_COMPENSATED, 1e-14);
+    assert!(e8 < 1e-12 && e12 < 1e-12, "{e8:e} {e12:e}");
+    let stars = Counted::new(Pleiades::new());
+    let cost = |tol| {
+        let before = stars.evaluations();
+        DPRKN12_COMPENSATED.run(&stars, 3.0, tol).unwrap();
+        stars.evaluations() - before
+    };
+    let (c12, c8) = (cost(1e-14), {
+        let before = stars.evaluations();
+        DPRKN8_COMPENSATED.run(&stars, 3.0, 1e-13).unwrap();
+        stars.evaluations() - before
+    });
+    assert!(c12 < c8, "{c12} {c8}");
+}
