@@ -139,3 +139,36 @@ fn on_the_pleiades_only_compensated_pairs_reach_below_1e_12() {
     });
     assert!(c12 < c8, "{c12} {c8}");
 }
+
+/// The twelfth-order pair's tolerance ladder on the eccentric orbit: its
+/// error reaches round-off within a few decades of tolerance, so its fitted
+/// exponent's interval holds the predicted 12/11 and 0 alike, and the
+/// claim is left undecided rather than passed. On the circular orbit the
+/// interval excludes 0 and holds 12/11: a pass.
+#[test]
+fn an_exponent_interval_holding_zero_decides_nothing() {
+    use stepladder::internals::adaptive::{ToleranceLadderSpec, tolerance_ladder};
+    use stepladder::scene::KeplerCircular;
+    use stepladder::study::Verdict;
+    let spec = ToleranceLadderSpec::default();
+    let eccentric =
+        tolerance_ladder(&DPRKN12_ADAPTIVE, &KeplerEccentric::default(), &spec).unwrap();
+    let p = eccentric.proportionality.unwrap();
+    println!("{}", eccentric.reason);
+    assert!(p.ci95[0] <= 0.0 && 12.0 / 11.0 <= p.ci95[1], "{p:?}");
+    assert_eq!(
+        eccentric.verdict,
+        Verdict::Inconclusive,
+        "{}",
+        eccentric.reason
+    );
+    assert!(
+        eccentric.reason.contains("and 0 too"),
+        "{}",
+        eccentric.reason
+    );
+    let circular = tolerance_ladder(&DPRKN12_ADAPTIVE, &KeplerCircular, &spec).unwrap();
+    let p = circular.proportionality.unwrap();
+    assert!(p.ci95[0] > 0.0 && p.agrees(), "{p:?}");
+    assert_eq!(circular.verdict, Verdict::Pass, "{}", circular.reason);
+}

@@ -186,6 +186,21 @@ pub(super) fn judge_exponent(
                 f.exponent, f.ci95[0], f.ci95[1]
             ),
         ),
+        // the claim's negation is an error that does not follow the
+        // tolerance at all (a controller stuck at one step, say: exponent
+        // 0); an interval holding both cannot tell the claim from it
+        Some(f) if f.agrees() && f.ci95[0] <= 0.0 && 0.0 <= f.ci95[1] => (
+            Verdict::Inconclusive,
+            format!(
+                "error ~ TOL^{:.3} [{:.3}, {:.3}] contains the predicted {:.3} and 0 too: \
+                 too few tolerances are resolved above round-off to tell the claimed law \
+                 from an error that does not follow the tolerance",
+                f.exponent,
+                f.ci95[0],
+                f.ci95[1],
+                f.theory.unwrap_or(f64::NAN)
+            ),
+        ),
         Some(f) if f.agrees() => (
             Verdict::Pass,
             format!(
