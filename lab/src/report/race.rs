@@ -5,9 +5,10 @@
 use super::markdown::{Table, sci};
 use super::markdown::{evaluations, time_reach};
 use crate::peer::peer_names;
+use crate::suite::ias15::Ias15Row;
 use crate::suite::race::{
-    NBODY_FIRST_STEPS, NBODY_FIRST_TOLERANCE, NbodyRecord, RACE_TARGETS, REFERENCE_SHARE,
-    RaceRecords, RaceRow,
+    DigitCost, DigitRow, NBODY_FIRST_STEPS, NBODY_FIRST_TOLERANCE, NBODY_TOLERANCES, NbodyRecord,
+    RACE_TARGETS, REFERENCE_SHARE, RaceRecords, RaceRow,
 };
 use stepladder::internals::cost::work_points::Reach;
 
@@ -164,6 +165,77 @@ pub fn reference_table(records: &[NbodyRecord]) -> String {
     t.render()
 }
 
+/// `per_digit [low, high]`, or `<= high` without a run that missed.
+fn per_digit(d: Option<DigitCost>) -> String {
+    match d {
+        None => "not reached".into(),
+        Some(DigitCost {
+            per_digit,
+            low: Some(low),
+            high,
+        }) => format!("{} [{}, {}]", sci(per_digit), sci(low), sci(high)),
+        Some(DigitCost { high, .. }) => format!("<= {}", sci(high)),
+    }
+}
+
+/// Evaluations per correct digit: the cheapest own pair's and each peer's.
+pub fn digits_table(rows: &[DigitRow]) -> String {
+    let peers = peer_names();
+    let mut header = vec![
+        "scene",
+        "target",
+        "cheapest own pair",
+        "evaluations per digit",
+    ];
+    header.extend(&peers);
+    let mut t = Table::new(&header);
+    for r in rows {
+        let target = if r.judged {
+            format!("{:.0e}", r.target)
+        } else {
+            format!("{:.0e} (not judged)", r.target)
+        };
+        let mut row = vec![
+            format!("`{}`", r.scene),
+            target,
+            who(r.pair.map(|p| p.0)),
+            per_digit(r.pair.map(|p| p.1)),
+        ];
+        row.extend(r.peers.iter().map(|&p| per_digit(p)));
+        t.row(row);
+    }
+    t.render()
+}
+
+/// IAS15's reference row: its cost and cost per digit at each N-body
+/// target, against the crate's best.
+pub fn ias15_table(rows: &[Ias15Row]) -> String {
+    let mut t = Table::new(&[
+        "scene",
+        "target",
+        "IAS15 evaluations",
+        "per digit",
+        "crate's best",
+        "IAS15 / crate's best",
+    ]);
+    for r in rows {
+        let target = if r.judged {
+            format!("{:.0e}", r.target)
+        } else {
+            format!("{:.0e} (not judged)", r.target)
+        };
+        t.row(vec![
+            format!("`{}`", r.scene),
+            target,
+            evaluations(r.reach),
+            per_digit(r.digits),
+            r.best.map_or("not reached".into(), sci),
+            ratio(r.reach.cost(), r.best),
+        ]);
+    }
+    t.render()
+}
+
 /// The race's part of the deterministic section.
 pub fn race_section(race: &RaceRecords) -> String {
     let mut out = String::from("### The race\n\n");
@@ -177,23 +249,26 @@ pub fn race_section(race: &RaceRecords) -> String {
          of the work study, whose tolerances go a decade further). The N-body scenes have \
          no exact solution: there the error is the phase-space distance at the end time to \
          a reference state, each adaptive contender run from a tolerance of {} a decade at \
-         a time until the targets are bracketed or its error stops falling, each \
-         fixed-step scheme from {} steps doubling until it reaches every target or its run \
+         a time until its error is below the smallest target the reference judges, or \
+         down to a tolerance of {}, each fixed-step scheme from {} steps doubling until it reaches every target or its run \
          that missed one already cost what the cheapest own pair spends there, after which \
          it cannot be the crate's best (`none below N` says where the search stopped). A \
          target is judged only where the reference's own error is at most {} of it.\n\n\
          A fixed step pays everywhere for the orbit's fastest part, an adaptive one only \
-         there. Where DPRKN8(6) wins, the reason is the equation: for `q'' = a(q)` a \
-         Nyström method spends no stages on the velocity's own derivative, so it reaches \
-         order eight with eight force evaluations a step, where DOP853, written for any \
-         first-order system and run on `(q, v)`, spends twelve, and Verner's 9(8) pair, \
-         one order higher, sixteen. Where neither side reaches a target the reference \
-         resolves, the outcome gives the smallest error any run reached: every \
-         contender's error has stopped falling above the target, at the round-off its \
-         state updates make in double precision (with compensated sums, Kahan and Li's \
-         composition gets below the smallest target on the Pleiades, where the same \
-         composition without them stalls: `tests/harness/nbody.rs`).\n\n",
+         there. Where the own pairs win, the reason is the equation: for `q'' = a(q)` a \
+         Nyström method spends no stages on the velocity's own derivative, so DPRKN8(6) \
+         reaches order eight with eight force evaluations a step and RKN12(10) order \
+         twelve with seventeen, where DOP853, written for any first-order system and run \
+         on `(q, v)`, spends twelve for order eight, and Verner's 9(8) pair sixteen for \
+         order nine. At the tight targets the second reason is round-off: a plain pair \
+         adds each step's small increment to a coordinate of order one and loses about \
+         `eps/2` of the coordinate each time, which on the Pleiades' close encounters \
+         stops every plain contender above 1e-12; the compensated pairs carry what each \
+         addition drops (Knuth's TwoSum) and lose only the rounding of the increments \
+         themselves. Where neither side reaches a target the reference resolves, the \
+         outcome gives the smallest error any run reached.\n\n",
         sci(NBODY_FIRST_TOLERANCE),
+        sci(NBODY_TOLERANCES[NBODY_TOLERANCES.len() - 1]),
         NBODY_FIRST_STEPS,
         REFERENCE_SHARE,
     ));
@@ -203,6 +278,26 @@ pub fn race_section(race: &RaceRecords) -> String {
          contenders' tightest runs come to it and to each other:\n\n",
     );
     out.push_str(&reference_table(&race.nbody));
+    out.push_str(
+        "\nWhat each digit of accuracy costs: the force evaluations to reach a target \
+         divided by the digits it asks for (`-log10` of the target), for the cheapest own \
+         pair at that target and for each peer, read off the same runs as the race. In \
+         brackets, the same figure for the last run that missed the target and the first \
+         that reached it: where the error falls as the cost grows, the true cost lies \
+         between them (`<=` where the cheapest run already reached it).\n\n",
+    );
+    out.push_str(&digits_table(&race.digits));
+    let (version, command) = crate::suite::ias15::provenance();
+    out.push_str(&format!(
+        "\nIAS15, REBOUND's 15th-order Gauss-Radau integrator and the reference integrator of \
+         N-body work, as a reference row (not a contender: it runs outside the crate's \
+         build): REBOUND {version} itself ran it on the same initial states to the same end \
+         times, at its accuracy parameter `epsilon` from 1e-1 to 1e-12 (`{command}`, \
+         output in `lab/ias15/ias15.json`); its end states are judged here against the \
+         same references, and its evaluations are REBOUND's calls of the force, counted \
+         through a force term that adds nothing.\n\n",
+    ));
+    out.push_str(&ias15_table(&race.ias15));
     out
 }
 
@@ -217,7 +312,8 @@ pub fn timing_section(rows: &[RaceRow]) -> String {
          N-body scenes) timed the same way, set-up and output included; the fixed steps on \
          the Kepler orbits from the time-to-target table, on the N-body scenes their runs \
          that decide a target timed whole. A fixed step shown as `-` was not searched \
-         beyond the own pair's evaluations (see the race by evaluations).\n\n",
+         beyond the own pair's evaluations (see the race by evaluations), or, at 1e-14 on \
+         the Kepler orbits, not timed: the time-to-target table stops at 1e-12.\n\n",
     );
     out.push_str(&rows_table(rows, Unit::Seconds));
     out

@@ -1,6 +1,7 @@
 //! The tolerance ladder of every adaptive integrator on every built-in
-//! scene: the crate's own DPRKN6(4) and DPRKN8(6) pairs and the peers of
-//! other crates, through the same [`AdaptiveIntegrator`] trait.
+//! scene: the crate's own pairs (DPRKN6(4), DPRKN8(6) and DPRKN12(10), the
+//! last two also with compensated state updates) and the peers of other
+//! crates, through the same [`AdaptiveIntegrator`] trait.
 
 use crate::peer::{IntegratorVisitor, PEERS, PeerId};
 use crate::suite::work_precision::PEER_REPEATS;
@@ -11,7 +12,10 @@ use stepladder::internals::adaptive::{
 };
 use stepladder::internals::parallel::parallel_map;
 use stepladder::scene::{AnyScene, Scene, SceneVisitor};
-use stepladder::scheme::{AdaptiveIntegrator, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE};
+use stepladder::scheme::{
+    AdaptiveIntegrator, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, DPRKN8_COMPENSATED, DPRKN12_ADAPTIVE,
+    DPRKN12_COMPENSATED,
+};
 
 /// Which adaptive integrator a job runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -20,21 +24,37 @@ pub enum Adaptive {
     OwnPair6,
     /// [`DPRKN8_ADAPTIVE`].
     OwnPair8,
+    /// [`DPRKN8_COMPENSATED`].
+    OwnPair8Compensated,
+    /// [`DPRKN12_ADAPTIVE`].
+    OwnPair12,
+    /// [`DPRKN12_COMPENSATED`].
+    OwnPair12Compensated,
     /// A peer of another crate.
     Peer(PeerId),
 }
 
 /// The crate's own pairs, in table order.
-pub const OWN_PAIRS: [Adaptive; 2] = [Adaptive::OwnPair6, Adaptive::OwnPair8];
+pub const OWN_PAIRS: [Adaptive; 5] = [
+    Adaptive::OwnPair6,
+    Adaptive::OwnPair8,
+    Adaptive::OwnPair8Compensated,
+    Adaptive::OwnPair12,
+    Adaptive::OwnPair12Compensated,
+];
 
 /// The integrators of the study, in table order: the own pairs, then the
 /// peers.
-pub const INTEGRATORS: [Adaptive; 2 + PEERS.len()] = {
-    let mut all = [Adaptive::OwnPair6; 2 + PEERS.len()];
-    all[1] = Adaptive::OwnPair8;
+pub const INTEGRATORS: [Adaptive; OWN_PAIRS.len() + PEERS.len()] = {
+    let mut all = [Adaptive::OwnPair6; OWN_PAIRS.len() + PEERS.len()];
+    let mut i = 0;
+    while i < OWN_PAIRS.len() {
+        all[i] = OWN_PAIRS[i];
+        i += 1;
+    }
     let mut i = 0;
     while i < PEERS.len() {
-        all[2 + i] = Adaptive::Peer(PEERS[i]);
+        all[OWN_PAIRS.len() + i] = Adaptive::Peer(PEERS[i]);
         i += 1;
     }
     all
@@ -46,6 +66,9 @@ impl Adaptive {
         match self {
             Adaptive::OwnPair6 => visitor.visit(&DPRKN6_ADAPTIVE),
             Adaptive::OwnPair8 => visitor.visit(&DPRKN8_ADAPTIVE),
+            Adaptive::OwnPair8Compensated => visitor.visit(&DPRKN8_COMPENSATED),
+            Adaptive::OwnPair12 => visitor.visit(&DPRKN12_ADAPTIVE),
+            Adaptive::OwnPair12Compensated => visitor.visit(&DPRKN12_COMPENSATED),
             Adaptive::Peer(p) => p.visit(visitor),
         }
     }
@@ -55,6 +78,9 @@ impl Adaptive {
         match self {
             Adaptive::OwnPair6 => DPRKN6_ADAPTIVE.name,
             Adaptive::OwnPair8 => DPRKN8_ADAPTIVE.name,
+            Adaptive::OwnPair8Compensated => DPRKN8_COMPENSATED.name,
+            Adaptive::OwnPair12 => DPRKN12_ADAPTIVE.name,
+            Adaptive::OwnPair12Compensated => DPRKN12_COMPENSATED.name,
             Adaptive::Peer(p) => p.name(),
         }
     }

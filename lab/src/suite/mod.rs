@@ -7,6 +7,7 @@ use stepladder::error::Error;
 
 pub mod adaptive;
 pub mod hard_cases;
+pub mod ias15;
 pub mod race;
 pub mod round_off;
 pub mod work_precision;

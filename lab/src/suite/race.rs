@@ -20,7 +20,7 @@
 //! reaches a target, the fixed steps are searched as far as the pairs' most
 //! expensive run went.
 
-use crate::peer::{IntegratorVisitor, PEERS, VERNER98};
+use crate::peer::{IntegratorVisitor, PEERS};
 use crate::suite::adaptive::{AdaptiveRecords, INTEGRATORS, OWN_PAIRS};
 use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
 use serde::Serialize;
@@ -29,7 +29,7 @@ use stepladder::internals::cost::work_points::{Reach, cheapest, cost_to_reach};
 use stepladder::internals::parallel::parallel_map;
 use stepladder::internals::run::integrate;
 use stepladder::scene::{AnyScene, Counted, OuterSolarSystem, Pleiades, Scene, SceneVisitor};
-use stepladder::scheme::{AdaptiveIntegrator, RunEnd};
+use stepladder::scheme::{AdaptiveIntegrator, DPRKN12_COMPENSATED, RunEnd};
 use stepladder::scheme::{
     Compensated, KAHAN_LI8, Scheme, SchemeVisitor, SplittingTable, scheme_ids, visit_scheme,
 };
@@ -39,8 +39,8 @@ use stepladder::state::State;
 pub const KEPLER_SCENES: [&str; 2] = ["kepler-circular", "kepler-eccentric"];
 /// The N-body scenes of the race.
 pub const NBODY_SCENES: [&str; 2] = ["pleiades", "outer-solar-system"];
-/// The target errors, from a loose to a tight one.
-pub const RACE_TARGETS: [f64; 3] = [1e-6, 1e-9, 1e-12];
+/// The target errors, from a loose one to the accuracy of ephemeris work.
+pub const RACE_TARGETS: [f64; 4] = [1e-6, 1e-9, 1e-12, 1e-14];
 
 /// A target is judged when the reference's own error is at most this share
 /// of it: the error measured against the reference is then the true error
@@ -60,11 +60,13 @@ pub const NBODY_TOLERANCES: [f64; 14] = [
 /// The first of [`NBODY_TOLERANCES`] an adaptive ladder runs. The ladder
 /// goes a decade looser a run while its loosest run is already below the
 /// largest target, and a decade tighter a run until the error is below the
-/// smallest target or has stopped falling: a run whose error is not below
-/// half the smallest before it (once that is below the largest target) is
-/// at the floor that round-off sets, since a tenfold tighter tolerance cuts
-/// an order-`p` pair's error by `10^(p/(q+1))`, at least 8 for every
-/// contender here (`p/(q+1) >= 0.9`), while it is above that floor.
+/// smallest target the reference judges, or down to the list's last
+/// tolerance. It does not stop where the error seems to have stopped
+/// falling: near the round-off floor the end error of one run can fall
+/// below the trend by a cancellation of its local errors and the next run's
+/// then looks like a floor (the compensated RKN12(10) pair on the outer
+/// solar system: 3.0e-14 at TOL 1e-12, 4.0e-13 at 1e-13, 8.7e-15 at 1e-14),
+/// and every run is cheap next to the rest of the report.
 pub const NBODY_FIRST_TOLERANCE: f64 = 1e-8;
 
 /// Steps of the first run of a fixed-step ladder on an N-body scene; each
@@ -81,9 +83,10 @@ pub const NBODY_MAX_EVALUATIONS: u64 = 1 << 20;
 pub const OUTER_REFERENCE_STEPS: u64 = 1 << 14;
 
 /// The tolerance of the independent check of the outer solar system's
-/// reference: Verner's 9(8) pair, a different method with a different error
-/// control.
-pub const OUTER_CHECK_TOLERANCE: f64 = 1e-15;
+/// reference: the twelfth-order Nyström pair with compensated sums, a
+/// different method (stages, not a composition of Verlet steps) with its
+/// own error control, at the tightest tolerance a unit of round-off allows.
+pub const OUTER_CHECK_TOLERANCE: f64 = 1e-16;
 
 /// The quadruple-precision state of the Pleiades at `t = 3` (K. J. L. Li,
 /// RKAdaptiveMethods, Pleiades reference, stated good to 25 digits), in the
@@ -219,7 +222,8 @@ impl NbodyScene {
     /// The reference state at the scene's default end time: for the
     /// Pleiades the published one, for the outer solar system Kahan and
     /// Li's composition at [`OUTER_REFERENCE_STEPS`], its error estimated by
-    /// its distance to Verner's pair at [`OUTER_CHECK_TOLERANCE`].
+    /// its distance to the compensated RKN12(10) pair at
+    /// [`OUTER_CHECK_TOLERANCE`].
     pub fn reference(&self) -> NbodyReference {
         match self {
             NbodyScene::Pleiades(stars) => NbodyReference {
@@ -239,17 +243,17 @@ impl NbodyScene {
                     OUTER_REFERENCE_STEPS,
                 )
                 .expect("the composition resolves the nearly circular orbits");
-                let check = VERNER98
+                let check = DPRKN12_COMPENSATED
                     .run(planets, t_end, OUTER_CHECK_TOLERANCE)
                     .ok()
                     .filter(|r| r.end == RunEnd::Reached)
                     .and_then(|r| r.trajectory.last().map(|x| x.1))
-                    .expect("Verner's pair reaches the end");
+                    .expect("the twelfth-order pair reaches the end");
                 NbodyReference {
                     scene: "outer-solar-system",
                     t_end,
                     source: "Kahan and Li's eighth-order composition, compensated sums, 16384 steps",
-                    accuracy_source: "its distance to Verner's 9(8) pair at TOL = 1e-15",
+                    accuracy_source: "its distance to the compensated RKN12(10) pair at TOL = 1e-16",
                     accuracy: planets.phase_distance(&composition, &check),
                     state: flat(&composition),
                 }
@@ -372,7 +376,12 @@ fn adaptive_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
                 .filter(|e| e.is_finite()),
         }
     };
-    let (smallest, largest) = (RACE_TARGETS[2], RACE_TARGETS[0]);
+    let largest = RACE_TARGETS[0];
+    let smallest = RACE_TARGETS
+        .iter()
+        .copied()
+        .filter(|&t| reference.judges(t))
+        .fold(largest, f64::min);
     let first = NBODY_TOLERANCES
         .iter()
         .position(|&t| t == NBODY_FIRST_TOLERANCE)
@@ -384,14 +393,12 @@ fn adaptive_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         points.insert(0, run(NBODY_TOLERANCES[k]));
     }
     let mut k = first;
-    let mut best = f64::INFINITY;
-    while k + 1 < NBODY_TOLERANCES.len() {
-        let last = points.last().and_then(|p| p.error);
-        let floor = last.is_some_and(|e| best <= largest && e >= 0.5 * best);
-        if last.is_some_and(|e| e <= smallest) || floor {
-            break;
-        }
-        best = points.iter().filter_map(|p| p.error).fold(best, f64::min);
+    while k + 1 < NBODY_TOLERANCES.len()
+        && points
+            .last()
+            .and_then(|p| p.error)
+            .is_none_or(|e| e > smallest)
+    {
         k += 1;
         points.push(run(NBODY_TOLERANCES[k]));
     }
@@ -499,7 +506,8 @@ pub struct RaceRow {
     pub pair: Entry,
     /// Each peer's cost, in the order of [`PEERS`].
     pub peers: Vec<Reach>,
-    /// On an N-body scene, the smallest error any contender's run reached.
+    /// The smallest error any contender's run reached (by evaluations; not
+    /// kept in the race by time).
     pub smallest_error: Option<f64>,
     /// The reference resolves the target (always, against an exact
     /// solution).
@@ -535,6 +543,10 @@ pub struct RaceRecords {
     pub rows: Vec<RaceRow>,
     /// The N-body scenes' runs.
     pub nbody: Vec<NbodyRecord>,
+    /// Evaluations per correct digit, one row per race row.
+    pub digits: Vec<DigitRow>,
+    /// IAS15, measured by REBOUND, on the N-body scenes.
+    pub ias15: Vec<crate::suite::ias15::Ias15Row>,
 }
 
 /// The cheapest of the named reaches.
@@ -573,8 +585,10 @@ fn kepler_peers(w: &WorkRecord) -> Vec<RaceLadder> {
         .collect()
 }
 
-/// The Kepler rows: the cheapest fixed step from the work study, the own
-/// pairs from their tolerance ladders, the peers from the work study.
+/// The Kepler rows: the cheapest fixed step from the work study's rungs,
+/// the own pairs from their tolerance ladders, the peers from the work
+/// study, each read off its runs at every target (the work study's own
+/// targets stop at 1e-12).
 fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> {
     let mut rows = Vec::new();
     for scene in KEPLER_SCENES {
@@ -582,28 +596,58 @@ fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> 
             continue;
         };
         let peers = kepler_peers(w);
+        // the smallest error of any run on the scene: fixed steps, own
+        // pairs, peers
+        let smallest = w
+            .schemes
+            .iter()
+            .flat_map(|s| s.global.iter().map(|p| p.error))
+            .chain(
+                adaptive
+                    .ladders
+                    .iter()
+                    .filter(|l| l.scene == scene)
+                    .flat_map(|l| l.points.iter().map(|p| p.error)),
+            )
+            .chain(peers.iter().flat_map(|l| l.points.iter().map(|p| p.error)))
+            .flatten()
+            .reduce(f64::min);
         let ladder_reach = |name: &str, target: f64| {
             adaptive
                 .ladders
                 .iter()
                 .find(|l| l.scene == scene && l.integrator == name)
-                .and_then(|l| l.global_targets().into_iter().find(|c| c.target == target))
-                .map_or(Reach::NotReached, |c| c.reach)
+                .map_or(Reach::NotReached, |l| {
+                    let data: Vec<(f64, Option<f64>)> = l
+                        .points
+                        .iter()
+                        .map(|p| (p.evaluations as f64, p.error))
+                        .collect();
+                    cost_to_reach(&data, target)
+                })
         };
         for target in RACE_TARGETS {
-            let Some(c) = w.cheapest_global.iter().find(|c| c.target == target) else {
-                continue;
-            };
-            rows.push(kepler_row(
+            let schemes: Vec<(&'static str, Reach)> = w
+                .schemes
+                .iter()
+                .map(|s| {
+                    let data: Vec<(f64, Option<f64>)> = s
+                        .global
+                        .iter()
+                        .map(|p| (p.evaluations as f64, p.error))
+                        .collect();
+                    (s.scheme, cost_to_reach(&data, target))
+                })
+                .collect();
+            let mut row = kepler_row(
                 scene,
                 target,
-                Entry {
-                    name: c.scheme,
-                    reach: c.reach,
-                },
+                entry(&schemes),
                 |name| ladder_reach(name, target),
                 peers.iter().map(|l| l.reach(target)).collect(),
-            ));
+            );
+            row.smallest_error = smallest;
+            rows.push(row);
         }
     }
     rows
@@ -812,7 +856,132 @@ pub fn race(
 ) -> RaceRecords {
     let mut rows = kepler_rows(work, adaptive);
     rows.extend(nbody_rows(&nbody));
-    RaceRecords { rows, nbody }
+    let digits = digit_rows(&rows, work, adaptive, &nbody);
+    let ias15 = crate::suite::ias15::rows(&nbody, &rows);
+    RaceRecords {
+        rows,
+        nbody,
+        digits,
+        ias15,
+    }
+}
+
+/// What reaching a target costs per correct digit, `evaluations / d` with
+/// `d = -log10(target)` the digits the target asks for, read off one
+/// contender's runs.
+///
+/// The interval: the runs are cheapest first, and where the error falls as
+/// the cost grows, the cost of the target lies between the last run that
+/// missed it and the first that reached it; divided by `d`, those bound the
+/// figure. Interpolating between them on log-log axes gives the estimate.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DigitCost {
+    /// Evaluations per digit, from the interpolated cost.
+    pub per_digit: f64,
+    /// From the last run that missed the target; `None` when the first run
+    /// already reached it (the figure is then at most `high`).
+    pub low: Option<f64>,
+    /// From the first run that reached it.
+    pub high: f64,
+}
+
+/// A contender's cost per digit at `target`, from its `(evaluations,
+/// error)` runs, cheapest first; `None` where no run reaches the target.
+pub fn digit_cost(data: &[(f64, Option<f64>)], target: f64) -> Option<DigitCost> {
+    let digits = -target.log10();
+    let k = data
+        .iter()
+        .position(|&(_, e)| e.is_some_and(|e| e <= target))?;
+    let cost = cost_to_reach(data, target).cost()?;
+    let low = k
+        .checked_sub(1)
+        .map(|j| data[j].0)
+        .filter(|_| matches!(cost_to_reach(data, target), Reach::Interpolated(_)));
+    Some(DigitCost {
+        per_digit: cost / digits,
+        low: low.map(|c| c / digits),
+        high: data[k].0 / digits,
+    })
+}
+
+/// One scene and target of the evaluations-per-digit table: the cheapest
+/// own pair and every peer.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DigitRow {
+    /// Scene id.
+    pub scene: &'static str,
+    /// The target error.
+    pub target: f64,
+    /// The reference resolves the target.
+    pub judged: bool,
+    /// The cheapest own pair at the target, and its cost per digit.
+    pub pair: Option<(&'static str, DigitCost)>,
+    /// Each peer's, in the order of [`PEERS`].
+    pub peers: Vec<Option<DigitCost>>,
+}
+
+/// A contender's `(evaluations, error)` runs, cheapest first.
+type Runs = Vec<(f64, Option<f64>)>;
+
+/// The evaluations-per-digit rows, one per race row, from the same runs
+/// the race reads its costs off.
+fn digit_rows(
+    rows: &[RaceRow],
+    work: &[WorkRecord],
+    adaptive: &AdaptiveRecords,
+    nbody: &[NbodyRecord],
+) -> Vec<DigitRow> {
+    let points = |l: &RaceLadder| l.data();
+    rows.iter()
+        .map(|row| {
+            // every adaptive contender's runs on the scene, own pairs first
+            let runs: Vec<(&'static str, Runs)> =
+                if let Some(r) = nbody.iter().find(|r| r.reference.scene == row.scene) {
+                    r.adaptive
+                        .iter()
+                        .map(|l| (l.contender, points(l)))
+                        .collect()
+                } else {
+                    let own = OWN_PAIRS.iter().map(|p| {
+                        let data = adaptive
+                            .ladders
+                            .iter()
+                            .find(|l| l.scene == row.scene && l.integrator == p.name())
+                            .map(|l| {
+                                l.points
+                                    .iter()
+                                    .map(|x| (x.evaluations as f64, x.error))
+                                    .collect()
+                            })
+                            .unwrap_or_default();
+                        (p.name(), data)
+                    });
+                    let peers = work
+                        .iter()
+                        .find(|w| w.scene == row.scene)
+                        .map(kepler_peers)
+                        .unwrap_or_default()
+                        .into_iter()
+                        .map(|l| (l.contender, points(&l)));
+                    own.chain(peers).collect()
+                };
+            let (own, peers) = runs.split_at(OWN_PAIRS.len().min(runs.len()));
+            let pair = row.pair.name.and_then(|name| {
+                let (_, data) = own.iter().find(|(n, _)| *n == name)?;
+                Some((name, digit_cost(data, row.target)?))
+            });
+            DigitRow {
+                scene: row.scene,
+                target: row.target,
+                judged: row.judged,
+                pair,
+                peers: peers
+                    .iter()
+                    .map(|(_, data)| digit_cost(data, row.target))
+                    .collect(),
+            }
+        })
+        .collect()
 }
 
 /// A scene of any dimension that a visitor can be run on.
@@ -955,16 +1124,22 @@ pub fn race_times(
             _ => Vec::new(),
         };
         for (k, target) in RACE_TARGETS.into_iter().enumerate() {
-            let Some(f) = w.fastest_global.iter().find(|f| f.target == target) else {
-                continue;
-            };
-            rows.push(kepler_row(
-                scene,
-                target,
+            // the time-to-target table stops at the work study's targets;
+            // beyond them the fixed steps are not timed
+            let fixed = w.fastest_global.iter().find(|f| f.target == target).map_or(
                 Entry {
+                    name: None,
+                    reach: Reach::NotReached,
+                },
+                |f| Entry {
                     name: f.scheme,
                     reach: f.seconds,
                 },
+            );
+            rows.push(kepler_row(
+                scene,
+                target,
+                fixed,
                 |name| timed(name, target),
                 peers.iter().map(|s| s[k]).collect(),
             ));

@@ -96,8 +96,13 @@ fn the_verner_peer_is_tolerance_proportional_with_exponent_one_on_the_orbits() {
     }
 }
 
-/// Every ladder runs every tolerance to its end, and tighter tolerances
-/// never cost fewer evaluations.
+/// Every ladder runs every tolerance to its end, and a tighter tolerance
+/// never takes fewer accepted steps nor costs fewer evaluations than the
+/// looser run's accepted steps did: the controller sets smaller steps for a
+/// smaller tolerance, but what the looser run spent on rejected steps can
+/// exceed what the tighter one adds (the twelfth-order pair on the
+/// oscillator: 120 evaluations with one rejection at 1e-3, 104 with none at
+/// 1e-4, in seven and six tries of sixteen or seventeen evaluations).
 #[test]
 fn every_ladder_reaches_t_end_and_costs_more_as_the_tolerance_tightens() {
     let ladders = &super::common::suite().adaptive.ladders;
@@ -112,13 +117,21 @@ fn every_ladder_reaches_t_end_and_costs_more_as_the_tolerance_tightens() {
             r.integrator,
             r.scene
         );
-        assert!(
-            r.points
-                .windows(2)
-                .all(|w| w[1].evaluations >= w[0].evaluations),
-            "{} {}",
-            r.integrator,
-            r.scene
-        );
+        for w in r.points.windows(2) {
+            let tried = (w[0].accepted + w[0].rejected) as f64;
+            let accepted_cost = w[0].evaluations as f64 * w[0].accepted as f64 / tried;
+            assert!(
+                w[1].accepted >= w[0].accepted && w[1].evaluations as f64 >= accepted_cost,
+                "{} {}: {:?}",
+                r.integrator,
+                r.scene,
+                (
+                    w[0].tolerance,
+                    w[0].accepted,
+                    w[0].rejected,
+                    w[0].evaluations
+                ),
+            );
+        }
     }
 }
