@@ -172,3 +172,57 @@ fn an_exponent_interval_holding_zero_decides_nothing() {
     assert!(p.ci95[0] > 0.0 && p.agrees(), "{p:?}");
     assert_eq!(circular.verdict, Verdict::Pass, "{}", circular.reason);
 }
+
+/// The error estimate is the main solution minus the embedded one, in that
+/// order and in both components: the same step taken by the embedded
+/// weights alone (the tableau with them as its main weights) ends where the
+/// main step minus the estimate does, to a few units of rounding.
+#[test]
+fn the_estimate_is_main_minus_embedded() {
+    fn check<const S: usize>(t: &NystromTable<S>) {
+        let scene = KeplerEccentric::default();
+        let y = scene.initial();
+        let a0 = scene.acceleration(&y.q);
+        let h = scene.period() / 20.0;
+        let main = t.attempt(&scene, &y, a0, h);
+        let e = t.embedded.unwrap();
+        let mut lower = *t;
+        lower.b_bar = e.b_bar;
+        lower.b = e.b;
+        lower.embedded = None;
+        let embedded = lower.attempt(&scene, &y, a0, h).state;
+        let allowance = 32.0 * f64::EPSILON * (y.q.norm() + y.v.norm());
+        let (dq, dv) = (main.state.q - embedded.q, main.state.v - embedded.v);
+        assert!(dq.norm() + dv.norm() > 1e3 * allowance, "{dq} {dv}");
+        assert!(
+            (dq - main.error.q).norm() <= allowance,
+            "{dq} {}",
+            main.error.q
+        );
+        assert!(
+            (dv - main.error.v).norm() <= allowance,
+            "{dv} {}",
+            main.error.v
+        );
+    }
+    check(&DPRKN12);
+    check(&stepladder::scheme::DPRKN6);
+}
+
+/// A run that would need more than the pairs' step limit ends there, with the
+/// limit named, after exactly that many tries: the compensated
+/// twelfth-order pair asked for 1e-12 over 2e5 periods of the oscillator
+/// (some twenty steps a period, four million in all).
+#[test]
+fn a_run_past_the_step_limit_ends_there() {
+    use stepladder::scene::Harmonic;
+    // the pairs' limit, `MAX_STEPS` in `src/scheme/embedded_pair.rs`
+    const MAX_STEPS: u64 = 2_000_000;
+    let scene = Harmonic::default();
+    let run = DPRKN12_COMPENSATED
+        .run(&scene, 2e5 * scene.period(), 1e-12)
+        .unwrap();
+    assert_eq!(run.end, RunEnd::StepLimit);
+    assert_eq!(run.accepted + run.rejected, MAX_STEPS);
+    assert!(run.trajectory.last().unwrap().0 < 2e5 * scene.period());
+}
