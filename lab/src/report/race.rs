@@ -246,7 +246,9 @@ pub fn race_section(race: &RaceRecords) -> String {
          pairs on one side, each peer on the other. On the Kepler orbits the error is the \
          largest phase-space error over the run against the exact solution (the work \
          study's rungs, the tolerance ladders' runs for the own pairs and the peers' runs \
-         of the work study, whose tolerances go a decade further). The N-body scenes have \
+         of the work study, whose tolerances go a decade further), and a target is judged \
+         where the exact solution itself, evaluated in doubles, is within a tenth of it \
+         (its mean anomaly `n t` rounds by half an ulp). The N-body scenes have \
          no exact solution: there the error is the phase-space distance at the end time to \
          a reference state, each adaptive contender run from a tolerance of {} a decade at \
          a time until its error is below the smallest target the reference judges, or \
