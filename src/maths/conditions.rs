@@ -41,7 +41,6 @@
 //! and a condition is clearly violated when its defect is [`BEYOND_ORDER`]
 //! times the allowance or more.
 
-mod dd;
 mod defect;
 mod lie;
 mod taylor;

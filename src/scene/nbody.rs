@@ -19,6 +19,7 @@
 //! States are stored body after body, `K` coordinates each (`x1, y1, x2, y2,
 //! ...` in the plane).
 
+use crate::maths::dd::Dd;
 use crate::state::{Real, State};
 use nalgebra::SVector;
 
@@ -98,6 +99,50 @@ impl<const N: usize, const K: usize> Bodies<N, K> {
             }
         }
         v
+    }
+
+    /// The energy of the state `s + low` (a compensated sum's value and low
+    /// parts) in double-double, in the form the force law above conserves.
+    /// That law gives `Q_i'' = s_i G m_j d / r^3` with `s_i` the double
+    /// nearest `sqrt(m_i)`, which is `s_i^2 / m_i` times `-grad_(Q_i) V`:
+    /// the conserved kinetic energy is `sum m_i |Q_i' / s_i|^2 / 2`, the
+    /// physical one. Written with `|Q_i'|^2 / 2` instead, the energy would
+    /// swing by `(s_i^2 / m_i - 1)` of each body's kinetic energy, up to a
+    /// unit in the last place, which is what a compensated run's walk is
+    /// measured against.
+    pub(crate) fn energy_dd<const D: usize>(&self, s: &State<D>, low: &State<D>) -> Dd {
+        const {
+            assert!(
+                D == N * K,
+                "a state of N bodies in K dimensions has N K coordinates"
+            )
+        };
+        let exact = |x: f64, l: f64| Dd::of(x).add(Dd::of(l));
+        let mut r = [[Dd::default(); K]; N];
+        let mut energy = Dd::default();
+        for (i, ri) in r.iter_mut().enumerate() {
+            let w = Dd::of(self.sqrt_masses[i]);
+            for (k, x) in ri.iter_mut().enumerate() {
+                let n = K * i + k;
+                *x = exact(s.q[n], low.q[n]).div(w);
+                let u = exact(s.v[n], low.v[n]).div(w);
+                energy = energy.add(Dd::of(0.5 * self.masses[i]).mul(u.mul(u)));
+            }
+        }
+        for i in 0..N {
+            for j in i + 1..N {
+                let mut r2 = Dd::default();
+                for (&xj, &xi) in r[j].iter().zip(&r[i]) {
+                    let d = xj.sub(xi);
+                    r2 = r2.add(d.mul(d));
+                }
+                let gmm = Dd::of(self.g)
+                    .mul(Dd::of(self.masses[i]))
+                    .mul(Dd::of(self.masses[j]));
+                energy = energy.sub(gmm.div(r2.sqrt()));
+            }
+        }
+        energy
     }
 
     /// The physical positions `r_i = Q_i / sqrt(m_i)`.

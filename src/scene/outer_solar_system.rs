@@ -46,7 +46,7 @@ use nalgebra::SVector;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OuterSolarSystem {
-    bodies: Bodies<6, 3>,
+    pub(super) bodies: Bodies<6, 3>,
     period: f64,
 }
 

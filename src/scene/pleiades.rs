@@ -43,7 +43,7 @@ use nalgebra::SVector;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pleiades {
-    bodies: Bodies<7, 2>,
+    pub(super) bodies: Bodies<7, 2>,
     period: f64,
 }
 

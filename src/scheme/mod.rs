@@ -278,6 +278,19 @@ pub trait Scheme {
     /// evaluation.
     fn state<R: Real, const D: usize>(&self, carry: &Self::Carry<R, D>, h: R) -> State<D, R>;
 
+    /// What a compensated scheme carries beyond [`Scheme::state`]: the low
+    /// parts its sums kept, so that `state + compensation` is its state to
+    /// about twice the working precision. Zero for a scheme that rounds its
+    /// state, which is every scheme unless it says otherwise; a long run
+    /// reads a compensated scheme's energy at the sum, not at its rounding.
+    fn compensation<R: Real, const D: usize>(
+        &self,
+        _carry: &Self::Carry<R, D>,
+        _h: R,
+    ) -> State<D, R> {
+        State::new(nalgebra::SVector::zeros(), nalgebra::SVector::zeros())
+    }
+
     /// Force evaluations an implicit scheme's solves have spent since
     /// `start`, read off the carry; `None` for an explicit scheme, whose cost
     /// per step is fixed by its metadata.

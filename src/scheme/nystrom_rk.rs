@@ -307,6 +307,13 @@ impl<const S: usize> Summable for NystromTable<S> {
     ) -> State<D, R> {
         State::new(M::value(&c.q), M::value(&c.v))
     }
+    fn compensation_summed<M: Summation, R: Real, const D: usize>(
+        &self,
+        c: &SummedCarry<R, D, M>,
+        _: R,
+    ) -> State<D, R> {
+        State::new(M::low(&c.q), M::low(&c.v))
+    }
 }
 
 impl<const S: usize> Scheme for NystromTable<S> {

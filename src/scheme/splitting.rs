@@ -183,6 +183,13 @@ impl Summable for SplittingTable {
     ) -> State<D, R> {
         State::new(S::value(&c.q), S::value(&c.v))
     }
+    fn compensation_summed<S: Summation, R: Real, const D: usize>(
+        &self,
+        c: &KickDrift<R, D, S>,
+        _: R,
+    ) -> State<D, R> {
+        State::new(S::low(&c.q), S::low(&c.v))
+    }
 }
 
 rounded_scheme!(SplittingTable, |table| &table.meta);

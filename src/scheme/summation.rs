@@ -54,6 +54,10 @@ pub trait Summation: Copy + Debug + Default + PartialEq + Send + Sync + 'static 
     /// The coordinate rounded to working precision.
     fn value<R: Real, const D: usize>(sum: &Self::Sum<R, D>) -> SVector<R, D>;
 
+    /// What rounding the coordinate to working precision dropped: zero for
+    /// a rounded sum, the low part for a compensated one.
+    fn low<R: Real, const D: usize>(sum: &Self::Sum<R, D>) -> SVector<R, D>;
+
     /// Adds `increment` to the coordinate.
     fn add<R: Real, const D: usize>(sum: &mut Self::Sum<R, D>, increment: SVector<R, D>);
 
@@ -92,6 +96,11 @@ impl Summation for Rounded {
     #[inline(always)]
     fn value<R: Real, const D: usize>(sum: &SVector<R, D>) -> SVector<R, D> {
         *sum
+    }
+
+    #[inline(always)]
+    fn low<R: Real, const D: usize>(_: &SVector<R, D>) -> SVector<R, D> {
+        SVector::zeros()
     }
 
     #[inline(always)]
@@ -152,6 +161,11 @@ impl Summation for Kahan {
     #[inline(always)]
     fn value<R: Real, const D: usize>(sum: &Summed<R, D>) -> SVector<R, D> {
         sum.value
+    }
+
+    #[inline(always)]
+    fn low<R: Real, const D: usize>(sum: &Summed<R, D>) -> SVector<R, D> {
+        sum.low
     }
 
     /// The low part lost so far rides along with the increment, and what this
@@ -219,6 +233,14 @@ pub trait Summable: Sync + 'static {
 
     /// [`Scheme::state`] with sums `S`.
     fn state_summed<S: Summation, R: Real, const D: usize>(
+        &self,
+        carry: &Self::Carry<R, D, S>,
+        h: R,
+    ) -> State<D, R>;
+
+    /// [`Scheme::compensation`] with sums `S`: the low parts of the
+    /// coordinates the state is read from.
+    fn compensation_summed<S: Summation, R: Real, const D: usize>(
         &self,
         carry: &Self::Carry<R, D, S>,
         h: R,
@@ -310,5 +332,13 @@ impl<P: Summable> Scheme for Compensated<P> {
 
     fn state<R: Real, const D: usize>(&self, carry: &Self::Carry<R, D>, h: R) -> State<D, R> {
         self.plain.state_summed::<Kahan, R, D>(carry, h)
+    }
+
+    fn compensation<R: Real, const D: usize>(
+        &self,
+        carry: &Self::Carry<R, D>,
+        h: R,
+    ) -> State<D, R> {
+        self.plain.compensation_summed::<Kahan, R, D>(carry, h)
     }
 }

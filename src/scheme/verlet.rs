@@ -96,6 +96,15 @@ impl Summable for StormerVerlet {
         let difference = S::difference(&c.next(h), &c.previous);
         State::new(S::value(&c.current), difference / (h * R::of(2.0)))
     }
+
+    /// The velocity is a difference already taken with the low parts.
+    fn compensation_summed<S: Summation, R: Real, const D: usize>(
+        &self,
+        c: &TwoStep<R, D, S>,
+        _: R,
+    ) -> State<D, R> {
+        State::new(S::low(&c.current), nalgebra::SVector::zeros())
+    }
 }
 
 /// Leap-frog as in the lecture: positions at whole steps, velocities at half
@@ -174,6 +183,15 @@ impl Summable for Leapfrog {
             S::value(&c.q),
             S::plus(&c.v_half, -(c.a * (h * R::of(0.5)))),
         )
+    }
+
+    /// The synchronised velocity is a sum already taken with the low part.
+    fn compensation_summed<S: Summation, R: Real, const D: usize>(
+        &self,
+        c: &Staggered<R, D, S>,
+        _: R,
+    ) -> State<D, R> {
+        State::new(S::low(&c.q), nalgebra::SVector::zeros())
     }
 }
 

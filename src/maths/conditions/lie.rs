@@ -8,8 +8,8 @@
 //! `|v|^2/2 + V(q)` into its two exact flows are those of the free Lie
 //! algebra of the two flows, which the random matrices see in full).
 
-use super::dd::{Dd, UNIT, moved_one_ulp};
 use super::defect::Defect;
+use crate::maths::dd::{Dd, UNIT, moved_one_ulp};
 use crate::scheme::Flow;
 use nalgebra::SMatrix;
 

@@ -7,8 +7,8 @@
 //! vertices does, for every `f`; the trees are independent conditions, so
 //! there is no test problem to choose.
 
-use super::dd::{Dd, UNIT, moved_one_ulp};
 use super::defect::{Defect, TreeDefect};
+use crate::maths::dd::{Dd, UNIT, moved_one_ulp};
 
 /// Every rooted tree up to `max` vertices, smaller trees first: sizes and
 /// children (indices of smaller trees, a non-decreasing multiset).

@@ -1,7 +1,9 @@
-//! Double-double arithmetic, `hi + lo` with about 32 significant digits: in
-//! doubles the rounding of the many cancelling terms of a truncated series is
-//! far larger than the effect of a coefficient a few units in the last place
-//! off, which the checks must resolve.
+//! Double-double arithmetic, `hi + lo` with about 32 significant digits,
+//! where doubles cannot resolve what is measured: in the order conditions
+//! the rounding of the many cancelling terms of a truncated series is far
+//! larger than the effect of a coefficient a few units in the last place
+//! off; in a long run the energy's own rounding in doubles (about `1e-16` of
+//! it) hides the random walk of a compensated integrator's round-off.
 
 /// A double-double `hi + lo`: the unevaluated sum of two doubles with
 /// `|lo| <= ulp(hi)/2`. Each operation below rounds at about `2^-104`
@@ -17,6 +19,9 @@ pub struct Dd {
 /// The relative rounding of one double-double operation.
 pub const UNIT: f64 = 4.930_380_657_631_324e-32; // 2^-104
 
+// Named methods rather than operators: each rounding stays visible in the
+// formulas that use them.
+#[allow(clippy::should_implement_trait)]
 impl Dd {
     /// `x`, exactly.
     pub const fn of(x: f64) -> Self {
@@ -68,6 +73,25 @@ impl Dd {
         }
     }
 
+    /// `self / y`: the quotient of the leading parts, then two corrections
+    /// from the exact remainder, each adding 53 bits.
+    pub fn div(self, y: Dd) -> Dd {
+        let q0 = self.hi / y.hi;
+        let r = self.sub(y.mul(Dd::of(q0)));
+        let q1 = r.hi / y.hi;
+        let r = r.sub(y.mul(Dd::of(q1)));
+        let q2 = r.hi / y.hi;
+        Dd::of(q0).add(Dd::of(q1)).add(Dd::of(q2))
+    }
+
+    /// `sqrt(self)` for `self > 0`: one Newton step from the double root,
+    /// which doubles its 53 bits.
+    pub fn sqrt(self) -> Dd {
+        let s = self.hi.sqrt();
+        let r = self.sub(Dd::of(s).mul(Dd::of(s)));
+        Dd::of(s).add(Dd::of(r.hi / (2.0 * s)))
+    }
+
     /// The nearest double.
     pub fn to_f64(self) -> f64 {
         self.hi + self.lo
@@ -107,6 +131,23 @@ mod tests {
         assert!(one.to_f64().abs() <= 2.0 * UNIT, "{one:?}");
         let s = Dd::of(0.1).add(Dd::of(0.2)).sub(Dd::of(0.3));
         assert_eq!(s.to_f64(), 2f64.powi(-55));
+    }
+
+    /// `2/3` and `sqrt(2)` to the double-double unit: each squared or
+    /// multiplied back gives its argument to a few units of `2^-104`.
+    #[test]
+    fn quotients_and_roots_carry_the_low_part() {
+        let q = Dd::of(2.0).div(Dd::of(3.0));
+        assert!(q.mul(Dd::of(3.0)).sub(Dd::of(2.0)).to_f64().abs() <= 4.0 * UNIT);
+        assert!(q.lo != 0.0, "the low part of 2/3 is not zero: {q:?}");
+        let r = Dd::of(2.0).sqrt();
+        assert!(r.mul(r).sub(Dd::of(2.0)).to_f64().abs() <= 8.0 * UNIT);
+        let third = Dd::recip(3.0);
+        let back = Dd::of(1.0).div(third);
+        assert!(
+            back.sub(Dd::of(3.0)).to_f64().abs() <= 8.0 * UNIT,
+            "{back:?}"
+        );
     }
 
     #[test]
