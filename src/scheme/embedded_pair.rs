@@ -263,10 +263,17 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
             if last {
                 h = t_end - t;
             }
-            if t + h == t {
+            // the step ends on a double and is that double less `t`: exact
+            // once `t >= h` (Sterbenz), so the state is the solution at the
+            // time it is recorded with, and no rounding of `t + h`
+            // accumulates in the clock (at the eccentric orbit's pericentre
+            // half an ulp of t = 2 is 9e-15 of phase-space distance)
+            let t_next = if last { t_end } else { t + h };
+            if t_next == t {
                 run.end = RunEnd::StepUnderflow;
                 break;
             }
+            h = t_next - t;
             let trial = if self.compensated {
                 let mut q = Summed {
                     value: y.q,
@@ -299,7 +306,7 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
                 } else {
                     self.controller.max_growth
                 };
-                t = if last { t_end } else { t + h };
+                t = t_next;
                 y = state;
                 low = new_low;
                 a = if fsal {
