@@ -247,8 +247,14 @@ pub fn race_section(race: &RaceRecords) -> String {
          largest phase-space error over the run against the exact solution (the work \
          study's rungs, the tolerance ladders' runs for the own pairs and the peers' runs \
          of the work study, whose tolerances go a decade further), and a target is judged \
-         where the exact solution itself, evaluated in doubles, is within a tenth of it \
-         (its mean anomaly `n t` rounds by half an ulp). The N-body scenes have \
+         where the exact solution itself is within a tenth of it: it is the orbit of the \
+         doubles the integrators are given (`GM` and the initial state as doubles, which \
+         on the eccentric orbit shift the mean motion by 3.6e-16 of itself from the ideal \
+         `2 pi`), computed in double-double and rounded once, about 2e-16 off. The \
+         adaptive pairs end each step on a double and take the step as its difference \
+         from the last, so their states are at the times they are reported at: at the \
+         eccentric orbit's pericentre half an ulp of `t = 2` is 9e-15 of phase-space \
+         distance. The N-body scenes have \
          no exact solution: there the error is the phase-space distance at the end time to \
          a reference state, each adaptive contender run from a tolerance of {} a decade at \
          a time until its error is below the smallest target the reference judges, or \

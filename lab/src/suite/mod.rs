@@ -213,7 +213,7 @@ pub fn run_suite(
     part_done("verdict corpus");
     starting("round-off floors");
     let roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
-    part_done("round-off floors and long runs");
+    part_done("round-off floors, long runs and Brouwer's law");
     starting("speed against error");
     let (work, work_timing, speed) = speed_against_error(&cases, threads);
     part_done("speed against error");

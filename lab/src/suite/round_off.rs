@@ -1,15 +1,18 @@
 //! The round-off studies of the report, run in parallel: floors against the
-//! step on the oscillator and the circular orbit, and long runs of their
-//! exactly conserved quantities. Jobs are independent and their results
+//! step on the oscillator and the circular orbit, long runs of their
+//! exactly conserved quantities, and Brouwer's law on the outer solar
+//! system. Jobs are independent and their results
 //! stored by job, so the records do not depend on the thread count.
 
 use stepladder::error::Error;
 use stepladder::internals::compensated::{pair_ids, paired_ids};
+use stepladder::internals::round_off::brouwer::{RoundOffRecord, RoundOffSpec, round_off_growth};
 use stepladder::internals::round_off::floor::{
     PairRecord, RoundoffRecord, RoundoffSpec, assemble, study_pair,
 };
 use stepladder::internals::round_off::longrun::{LongrunRecord, LongrunSpec, longrun_of};
-use stepladder::scene::{AnyScene, Harmonic, KeplerCircular};
+use stepladder::scene::{AnyScene, Harmonic, KeplerCircular, OuterSolarSystem};
+use stepladder::scheme::{Compensated, DPRKN8};
 
 /// Every record of the round-off studies.
 #[derive(Clone, Debug)]
@@ -18,6 +21,47 @@ pub struct RoundoffRecords {
     pub floors: Vec<RoundoffRecord>,
     /// Long runs, scene-major, in pair order (plain schemes, then variants).
     pub longrun: Vec<LongrunRecord>,
+    /// Brouwer's law on the outer solar system: DPRKN8 plain, then with
+    /// compensated sums.
+    pub brouwer: Vec<BrouwerRun>,
+}
+
+/// One integrator's million-step runs and the verdict on "round-off
+/// optimal".
+#[derive(Clone, Debug)]
+pub struct BrouwerRun {
+    /// The scheme sums its coordinates with compensation.
+    pub compensated: bool,
+    /// The study's record.
+    pub record: RoundOffRecord,
+}
+
+/// The fixed-step DPRKN8 with compensated sums: the same map as [`DPRKN8`],
+/// its coordinates carried with their low parts.
+pub const DPRKN8_FIXED_COMPENSATED: Compensated<stepladder::scheme::NystromTable<9>> =
+    Compensated {
+        meta: DPRKN8.meta,
+        plain: DPRKN8,
+    };
+
+/// Runs DPRKN8, plain or compensated, for a million steps on the outer
+/// solar system, its runs on one thread (the suite runs the two in
+/// parallel with the rest).
+pub fn brouwer_run(compensated: bool) -> Result<BrouwerRun, Error> {
+    let spec = RoundOffSpec {
+        threads: Some(1),
+        ..RoundOffSpec::default()
+    };
+    let scene = OuterSolarSystem::new();
+    let record = if compensated {
+        round_off_growth(&DPRKN8_FIXED_COMPENSATED, &scene, &spec)?
+    } else {
+        round_off_growth(&DPRKN8, &scene, &spec)?
+    };
+    Ok(BrouwerRun {
+        compensated,
+        record,
+    })
 }
 
 /// The scenes of the floor study and each one's ladder: the finest step is
@@ -53,19 +97,22 @@ pub fn longrun_scenes() -> Vec<AnyScene> {
 enum Job {
     Floor(usize, &'static str),
     Long(usize, &'static str),
+    Brouwer(bool),
 }
 
 enum Done {
     Floor(Result<PairRecord, Error>),
     Long(Result<LongrunRecord, Error>),
+    Brouwer(Result<BrouwerRun, Error>),
 }
 
 /// Runs every round-off study of the report on `threads` threads.
 pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
     let floors = floor_scenes();
     let longs = longrun_scenes();
-    let mut jobs: Vec<Job> = Vec::new();
-    // the floor ladders are the longest jobs: first, so the long runs fill in
+    // the million-step runs and the floor ladders are the longest jobs:
+    // first, so the long runs fill in
+    let mut jobs: Vec<Job> = vec![Job::Brouwer(false), Job::Brouwer(true)];
     for (i, _) in floors.iter().enumerate() {
         jobs.extend(paired_ids().into_iter().map(|id| Job::Floor(i, id)));
     }
@@ -78,15 +125,17 @@ pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
         |job| match *job {
             Job::Floor(s, id) => Done::Floor(study_pair(&floors[s].0, id, &floors[s].1)),
             Job::Long(s, id) => Done::Long(longrun_of(&longs[s], id, &LongrunSpec::default())),
+            Job::Brouwer(compensated) => Done::Brouwer(brouwer_run(compensated)),
         },
         &|_, _| {},
     );
     let mut pairs: Vec<Vec<PairRecord>> = floors.iter().map(|_| Vec::new()).collect();
-    let mut longrun = Vec::new();
+    let (mut longrun, mut brouwer) = (Vec::new(), Vec::new());
     for (job, done) in jobs.iter().zip(results) {
         match (job, done) {
             (Job::Floor(s, _), Done::Floor(r)) => pairs[*s].push(r?),
             (Job::Long(_, _), Done::Long(r)) => longrun.push(r?),
+            (Job::Brouwer(_), Done::Brouwer(r)) => brouwer.push(r?),
             _ => unreachable!("every job ran and produced its own kind of record"),
         }
     }
@@ -95,5 +144,9 @@ pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
         .zip(pairs)
         .map(|((scene, spec), p)| assemble(scene, spec, p))
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(RoundoffRecords { floors, longrun })
+    Ok(RoundoffRecords {
+        floors,
+        longrun,
+        brouwer,
+    })
 }
