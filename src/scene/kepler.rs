@@ -81,7 +81,7 @@ impl Scene<2> for KeplerCircular {
     }
 
     /// The orbit of the doubles the integrators are given (see
-    /// [`OrbitOfTheDoubles`]): the unit circle to within `2e-17`, its phase
+    /// `OrbitOfTheDoubles` in this file): the unit circle to within `2e-17`, its phase
     /// `n t` with `n` from `GM` and `v0` as doubles.
     fn exact(&self, t: f64) -> Option<State<2>> {
         Some(OrbitOfTheDoubles::of(&self.initial()).at(t))
@@ -211,7 +211,7 @@ impl Scene<2> for KeplerEccentric {
     }
 
     /// The orbit of the doubles the integrators are given (see
-    /// [`OrbitOfTheDoubles`]).
+    /// `OrbitOfTheDoubles` in this file).
     fn exact(&self, t: f64) -> Option<State<2>> {
         Some(OrbitOfTheDoubles::of(&self.initial()).at(t))
     }

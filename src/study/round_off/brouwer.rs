@@ -34,7 +34,7 @@
 //!   the interval's top out of the band, and a bounded error as large as
 //!   the walk at the shortest lag drops its bottom out (both tested on
 //!   simulated paths below): neither passes.
-//! - The walk's size per step must be below [`rounding_floor`]: the walk a
+//! - The walk's size per step must be below the rounding floor: the walk a
 //!   scheme makes that rounds each coordinate to a double once a step. A
 //!   double `x` rounds by a uniform error of width `ulp(x) > u |x|`
 //!   (`u = eps/2`), variance at least `(u x)^2 / 12`, and moves the energy
@@ -121,7 +121,7 @@ pub struct RoundOffRecord {
     pub ci95: Option<[f64; 2]>,
     /// The walk's size per step, `rms(L) / sqrt(L)` at the longest lag.
     pub per_step: f64,
-    /// [`rounding_floor`] along the runs.
+    /// The rounding floor (see the module documentation) along the runs.
     pub rounding_floor: f64,
     /// The largest relative energy error in any run.
     pub max_relative_error: f64,
