@@ -232,6 +232,15 @@ pub struct PowerLaw {
     pub points: usize,
 }
 
+/// The jackknife standard error of an estimate from its leave-one-out
+/// values (each computed with one of `k` independent samples left out):
+/// `sqrt((k - 1)/k sum (x_i - mean)^2)`.
+pub(crate) fn jackknife_standard_error(left_out: &[f64]) -> f64 {
+    let k = left_out.len() as f64;
+    let mean = left_out.iter().sum::<f64>() / k;
+    ((k - 1.0) / k * left_out.iter().map(|x| (x - mean).powi(2)).sum::<f64>()).sqrt()
+}
+
 /// Fits `ln y = a + p ln x` to the points (all `x`, `y` must be positive and
 /// finite). Returns `None` with fewer than three points or no spread in `x`,
 /// where no interval can be formed.

@@ -72,6 +72,7 @@ pub use hard::eccentric::{
 };
 pub use hard::escape::{EscapeRecord, EscapeSpec, escape_or_trapped};
 pub use hard::following::{FollowingRecord, WellSpec, following};
+pub use round_off::brouwer::{RoundOffRecord, RoundOffSpec, round_off_growth};
 pub use round_off::floor::{RoundoffRecord, RoundoffSpec, roundoff};
 pub use round_off::longrun::{LongrunRecord, LongrunSpec, longrun};
 pub use stability::{StabilityRecord, stability};

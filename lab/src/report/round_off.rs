@@ -44,7 +44,7 @@ pub fn sections(records: &RoundoffRecords) -> String {
 const BROUWER_METHOD: &str = "An integrator is *round-off optimal* when its energy error \
 over a long run is the random walk of the rounding it cannot avoid (Brouwer's law, \
 `t^(1/2)`) and no more. Claimed for an integrator, it is judged by \
-`round_off_growth` (in the core's `study::round_off::brouwer`): 16 runs of `2^20` steps of \
+`stepladder::study::round_off_growth`: 16 runs of `2^20` steps of \
 the outer solar system at `h = P/2000` (`P` the scene's period, Jupiter's; the \
 truncation error of an eighth-order method is then some `1e-20` of the energy), started \
 7919 steps apart, the energy read every 16 steps in double-double at the state plus the \

@@ -6,13 +6,13 @@
 
 use stepladder::error::Error;
 use stepladder::internals::compensated::{pair_ids, paired_ids};
-use stepladder::internals::round_off::brouwer::{RoundOffRecord, RoundOffSpec, round_off_growth};
 use stepladder::internals::round_off::floor::{
     PairRecord, RoundoffRecord, RoundoffSpec, assemble, study_pair,
 };
 use stepladder::internals::round_off::longrun::{LongrunRecord, LongrunSpec, longrun_of};
 use stepladder::scene::{AnyScene, Harmonic, KeplerCircular, OuterSolarSystem};
 use stepladder::scheme::{Compensated, DPRKN8};
+use stepladder::study::{RoundOffRecord, RoundOffSpec, round_off_growth};
 
 /// Every record of the round-off studies.
 #[derive(Clone, Debug)]

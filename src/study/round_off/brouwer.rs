@@ -49,7 +49,7 @@
 //! band's edge is inconclusive.
 
 use crate::error::Error;
-use crate::maths::fit::{power_law, t975};
+use crate::maths::fit::{jackknife_standard_error, power_law, t975};
 use crate::parallel::{default_threads, parallel_map};
 use crate::run::guarded_step;
 use crate::scene::PreciseEnergy;
@@ -144,7 +144,7 @@ struct Run {
 /// ```no_run
 /// use stepladder::scene::OuterSolarSystem;
 /// use stepladder::scheme::{Compensated, DPRKN8};
-/// use stepladder::study::round_off::brouwer::{RoundOffSpec, round_off_growth};
+/// use stepladder::study::{RoundOffSpec, round_off_growth};
 ///
 /// let compensated = Compensated { meta: DPRKN8.meta, plain: DPRKN8 };
 /// let record = round_off_growth(&compensated, &OuterSolarSystem::new(), &RoundOffSpec::default())?;
@@ -254,10 +254,7 @@ fn one_run<M: Scheme, S: PreciseEnergy<D>, const D: usize>(
     steps: u64,
 ) -> Result<Run, (u64, crate::scheme::StepFailure)> {
     let mut carry = scheme.start(scene, start, h);
-    let read = |carry: &M::Carry<f64, D>| {
-        scene.precise_energy(&scheme.state(carry, h), &scheme.compensation(carry, h))
-    };
-    let e0 = read(&carry);
+    let e0 = scene.precise_energy(&scheme.state(&carry, h), &scheme.compensation(&carry, h));
     let scale = e0.to_f64().abs();
     let mut errors = Vec::with_capacity((steps / STRIDE) as usize + 1);
     errors.push(0.0);
@@ -265,8 +262,9 @@ fn one_run<M: Scheme, S: PreciseEnergy<D>, const D: usize>(
     for n in 1..=steps {
         guarded_step(scheme, scene, &mut carry, h).map_err(|f| (n, f))?;
         if n % STRIDE == 0 {
-            errors.push(read(&carry).sub(e0).to_f64() / scale);
             let s = scheme.state(&carry, h);
+            let energy = scene.precise_energy(&s, &scheme.compensation(&carry, h));
+            errors.push(energy.sub(e0).to_f64() / scale);
             let a = scene.acceleration(&s.q);
             let terms: f64 = (0..D)
                 .map(|i| (s.q[i] * a[i]).powi(2) + s.v[i].powi(4))
@@ -341,12 +339,7 @@ fn variogram_growth(paths: &[&[f64]], steps: u64) -> Growth {
     let k = paths.len();
     let exponent = slope(&all).and_then(|g| {
         let left_out: Option<Vec<f64>> = (0..k).map(|i| slope(&rms_over(&|j| j != i))).collect();
-        let left_out = left_out?;
-        let mean = left_out.iter().sum::<f64>() / k as f64;
-        let se = ((k - 1) as f64 / k as f64
-            * left_out.iter().map(|x| (x - mean).powi(2)).sum::<f64>())
-        .sqrt();
-        Some((g, se))
+        Some((g, jackknife_standard_error(&left_out?)))
     });
     Growth {
         lags: lag_table,
@@ -360,7 +353,8 @@ fn judge(ci95: Option<[f64; 2]>, per_step: f64, floor: f64) -> (Verdict, String)
     let Some([a, b]) = ci95 else {
         return (
             Verdict::Inconclusive,
-            "the energy did not change at every lag, so no exponent can be fitted".into(),
+            "the energy's change is zero or not finite at some lag, so no exponent can be fitted"
+                .into(),
         );
     };
     let growth = format!(

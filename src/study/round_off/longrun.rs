@@ -32,7 +32,7 @@
 
 use crate::error::Error;
 use crate::ladder::check_count;
-use crate::maths::fit::power_law;
+use crate::maths::fit::{jackknife_standard_error, power_law};
 use crate::run::guarded_step;
 use crate::scene::{AnyScene, Harmonic, KeplerCircular, KeplerEccentric, Scene};
 use crate::scheme::Scheme;
@@ -295,14 +295,7 @@ pub fn ensemble_growth(times: &[f64], paths: &[Vec<f64>]) -> Option<(f64, f64)> 
     if leave_one_out.len() < k {
         return None;
     }
-    let mean = leave_one_out.iter().sum::<f64>() / k as f64;
-    let se = ((k - 1) as f64 / k as f64
-        * leave_one_out
-            .iter()
-            .map(|g| (g - mean).powi(2))
-            .sum::<f64>())
-    .sqrt();
-    Some((g, se))
+    Some((g, jackknife_standard_error(&leave_one_out)))
 }
 
 /// The long run of a Verlet form or compensated variant, named by id, on a
