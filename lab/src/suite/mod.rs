@@ -6,6 +6,7 @@ use crate::case::{Case, case};
 use stepladder::error::Error;
 
 pub mod adaptive;
+pub mod dd_reference;
 pub mod hard_cases;
 pub mod ias15;
 pub mod race;

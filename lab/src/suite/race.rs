@@ -22,6 +22,7 @@
 
 use crate::peer::{IntegratorVisitor, PEERS};
 use crate::suite::adaptive::{AdaptiveRecords, INTEGRATORS, OWN_PAIRS};
+use crate::suite::dd_reference;
 use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
 use serde::Serialize;
 use stepladder::internals::cost::step_time::time_run;
@@ -29,7 +30,7 @@ use stepladder::internals::cost::work_points::{Reach, cheapest, cost_to_reach};
 use stepladder::internals::parallel::parallel_map;
 use stepladder::internals::run::integrate;
 use stepladder::scene::{AnyScene, Counted, OuterSolarSystem, Pleiades, Scene, SceneVisitor};
-use stepladder::scheme::{AdaptiveIntegrator, DPRKN12_COMPENSATED, RunEnd};
+use stepladder::scheme::{AdaptiveIntegrator, RunEnd};
 use stepladder::scheme::{
     Compensated, KAHAN_LI8, Scheme, SchemeVisitor, SplittingTable, scheme_ids, visit_scheme,
 };
@@ -65,8 +66,8 @@ pub const NBODY_TOLERANCES: [f64; 14] = [
 /// falling: near the round-off floor the end error of one run can fall
 /// below the trend by a cancellation of its local errors and the next run's
 /// then looks like a floor (near 1e-15 the compensated pairs' end errors
-/// on the outer solar system move by a factor of five from one tolerance to
-/// the next), and every run is cheap next to the rest of the report.
+/// on the outer solar system move by up to a factor of ten from one
+/// tolerance to the next), and every run is cheap next to the rest of the report.
 pub const NBODY_FIRST_TOLERANCE: f64 = 1e-8;
 
 /// Steps of the first run of a fixed-step ladder on an N-body scene; each
@@ -77,16 +78,13 @@ pub const NBODY_FIRST_STEPS: u64 = 16;
 /// bounds.
 pub const NBODY_MAX_EVALUATIONS: u64 = 1 << 20;
 
-/// Steps of Kahan and Li's eighth-order composition (compensated sums) for
-/// the outer solar system's reference over its default end time, about
-/// 1.1 days a step for Jupiter's 4,333-day orbit.
-pub const OUTER_REFERENCE_STEPS: u64 = 1 << 14;
-
-/// The tolerance of the independent check of the outer solar system's
-/// reference: the twelfth-order Nyström pair with compensated sums, a
-/// different method (stages, not a composition of Verlet steps) with its
-/// own error control, at the tightest tolerance a unit of round-off allows.
-pub const OUTER_CHECK_TOLERANCE: f64 = 1e-16;
+/// Steps of the double-double eighth-order triple jump that makes the outer
+/// solar system's reference over its default end time, 1.5 days a step for
+/// Jupiter's 4,332-day orbit. Its truncation error there is about 4e-20,
+/// far below its rounding to doubles (4e-17): from 2^10 to 2^14 steps the
+/// runs move by 7.2e-13, 2.8e-15, 1.1e-17 and 4.3e-20 a doubling, falling
+/// 256-fold as an eighth-order method's must.
+pub const OUTER_REFERENCE_STEPS: u64 = 1 << 13;
 
 /// The quadruple-precision state of the Pleiades at `t = 3` (K. J. L. Li,
 /// RKAdaptiveMethods, Pleiades reference, stated good to 25 digits), in the
@@ -139,13 +137,18 @@ pub fn pleiades_quadruple_precision(stars: &Pleiades) -> State<14> {
 
 /// An upper bound on the published Pleiades state's own error: its phase
 /// distance to the quadruple-precision state plus the latter's rounding to
-/// f64 (half an ulp a component, weighted as the phase distance weighs it).
+/// f64.
 pub fn pleiades_published_accuracy(stars: &Pleiades) -> f64 {
     let quad = pleiades_quadruple_precision(stars);
-    let w = stars.frequency();
-    let rounding =
-        0.5 * f64::EPSILON * (quad.q.norm_squared() + (quad.v / w).norm_squared()).sqrt();
-    stars.phase_distance(&stars.published_end(), &quad) + rounding
+    stars.phase_distance(&stars.published_end(), &quad) + rounding_to_doubles(stars, &quad)
+}
+
+/// A bound on the phase-space distance between a state and its coordinates
+/// rounded to doubles: half an ulp a coordinate, at most `2^-53` of it,
+/// weighted as the phase distance weighs it.
+fn rounding_to_doubles<S: Scene<D>, const D: usize>(scene: &S, s: &State<D>) -> f64 {
+    let w = scene.frequency();
+    0.5 * f64::EPSILON * (s.q.norm_squared() + (s.v / w).norm_squared()).sqrt()
 }
 
 /// Kahan and Li's eighth-order composition with compensated sums: the
@@ -220,10 +223,11 @@ impl NbodyScene {
     }
 
     /// The reference state at the scene's default end time: for the
-    /// Pleiades the published one, for the outer solar system Kahan and
-    /// Li's composition at [`OUTER_REFERENCE_STEPS`], its error estimated by
-    /// its distance to the compensated RKN12(10) pair at
-    /// [`OUTER_CHECK_TOLERANCE`].
+    /// Pleiades the published one, for the outer solar system the
+    /// double-double triple jump at [`OUTER_REFERENCE_STEPS`], its error
+    /// bounded by its distance to the same run at half the steps (an
+    /// eighth-order run's own error is about `1/255` of that) plus its
+    /// rounding to doubles.
     pub fn reference(&self) -> NbodyReference {
         match self {
             NbodyScene::Pleiades(stars) => NbodyReference {
@@ -236,26 +240,22 @@ impl NbodyScene {
             },
             NbodyScene::OuterSolarSystem(planets) => {
                 let t_end = planets.default_t_end();
-                let composition = end_state(
-                    &KAHAN_LI8_COMPENSATED,
-                    planets,
-                    t_end,
-                    OUTER_REFERENCE_STEPS,
-                )
-                .expect("the composition resolves the nearly circular orbits");
-                let check = DPRKN12_COMPENSATED
-                    .run(planets, t_end, OUTER_CHECK_TOLERANCE)
-                    .ok()
-                    .filter(|r| r.end == RunEnd::Reached)
-                    .and_then(|r| r.trajectory.last().map(|x| x.1))
-                    .expect("the twelfth-order pair reaches the end");
+                let start = dd_reference::initial(planets);
+                let [fine, halved] =
+                    [OUTER_REFERENCE_STEPS, OUTER_REFERENCE_STEPS / 2].map(|steps| {
+                        dd_reference::mass_weighted_dd(&dd_reference::integrate(
+                            &start, t_end, steps,
+                        ))
+                    });
+                let state = dd_reference::rounded(&fine);
                 NbodyReference {
                     scene: "outer-solar-system",
                     t_end,
-                    source: "Kahan and Li's eighth-order composition, compensated sums, 16384 steps",
-                    accuracy_source: "its distance to the compensated RKN12(10) pair at TOL = 1e-16",
-                    accuracy: planets.phase_distance(&composition, &check),
-                    state: flat(&composition),
+                    source: "Yoshida's eighth-order triple jump of Verlet steps in double-double arithmetic, 8192 steps",
+                    accuracy_source: "its distance to the same run at half the steps, plus its rounding to doubles",
+                    accuracy: dd_reference::distance(planets, &fine, &halved)
+                        + rounding_to_doubles(planets, &state),
+                    state: flat(&state),
                 }
             }
         }
@@ -285,15 +285,6 @@ fn counted_end<M: Scheme, S: Scene<D>, const D: usize>(
         },
     );
     (last.filter(|_| outcome.completed()), counted.evaluations())
-}
-
-fn end_state<M: Scheme, S: Scene<D>, const D: usize>(
-    scheme: &M,
-    scene: &S,
-    t_end: f64,
-    steps: u64,
-) -> Option<State<D>> {
-    counted_end(scheme, scene, t_end, steps).0
 }
 
 /// One run of a contender.
@@ -592,11 +583,7 @@ fn kepler_peers(w: &WorkRecord) -> Vec<RaceLadder> {
 /// at most half an ulp of each coordinate (its tests check the rounded
 /// state against an independent 40-digit computation). In phase-space
 /// distance, the largest over 4096 points of a period: about 2e-16 on both
-/// orbits, so both judge every target down to 1e-14. Until the exact
-/// solutions were computed that way, the doubles' rounding of `2 pi t` and,
-/// on the eccentric orbit, the ideal elements (the double pericentre speed
-/// moves the mean motion by 3.6e-16 of itself) put them 2.5e-15 and
-/// 1.2e-14 off.
+/// orbits, so both judge every target down to 1e-14.
 pub fn exact_rounding(scene: &str) -> Option<f64> {
     struct Bound;
     impl SceneVisitor for Bound {
@@ -685,7 +672,6 @@ fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> 
                 peers.iter().map(|l| l.reach(target)).collect(),
             );
             row.smallest_error = smallest;
-            row.judged = exact_rounding(scene).is_some_and(|e| e <= REFERENCE_SHARE * target);
             rows.push(row);
         }
     }
@@ -713,7 +699,7 @@ fn kepler_row(
         pair: entry(&pairs),
         peers,
         smallest_error: None,
-        judged: true,
+        judged: exact_rounding(scene).is_some_and(|e| e <= REFERENCE_SHARE * target),
     }
 }
 
@@ -1175,15 +1161,13 @@ pub fn race_times(
                     reach: f.seconds,
                 },
             );
-            let mut row = kepler_row(
+            rows.push(kepler_row(
                 scene,
                 target,
                 fixed,
                 |name| timed(name, target),
                 peers.iter().map(|s| s[k]).collect(),
-            );
-            row.judged = exact_rounding(scene).is_some_and(|e| e <= REFERENCE_SHARE * target);
-            rows.push(row);
+            ));
         }
     }
     for (scene, r) in NbodyScene::all().iter().zip(&records.nbody) {
