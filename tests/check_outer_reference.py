@@ -23,6 +23,10 @@ import numpy as np
 
 L = np.longdouble
 
+# The published data (Hairer, Lubich, Wanner, I.2.4), stated here again so
+# that the check shares nothing with the crate but the problem; were the
+# scene's values to change, its end state would leave this one and the
+# harness test comparing the two would fail.
 G = 2.95912208286e-4
 MASSES = [
     1.00000597682,

@@ -6,6 +6,7 @@
 
 mod broken;
 mod correct;
+mod dd_reference;
 mod held_out;
 mod markdown;
 mod peer;
