@@ -9,6 +9,7 @@ pub mod adaptive;
 pub mod dd_reference;
 pub mod hard_cases;
 pub mod ias15;
+pub mod pericentre_lag;
 pub mod race;
 pub mod round_off;
 pub mod work_precision;

@@ -23,13 +23,16 @@
 use crate::peer::{IntegratorVisitor, PEERS};
 use crate::suite::adaptive::{AdaptiveRecords, INTEGRATORS, OWN_PAIRS};
 use crate::suite::dd_reference;
+use crate::suite::pericentre_lag::PericentreLag;
 use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
 use serde::Serialize;
 use stepladder::internals::cost::step_time::time_run;
 use stepladder::internals::cost::work_points::{Reach, cheapest, cost_to_reach};
 use stepladder::internals::parallel::parallel_map;
 use stepladder::internals::run::integrate;
-use stepladder::scene::{AnyScene, Counted, OuterSolarSystem, Pleiades, Scene, SceneVisitor};
+use stepladder::scene::{
+    AnyScene, Counted, KeplerEccentric, OuterSolarSystem, Pleiades, Scene, SceneVisitor,
+};
 use stepladder::scheme::{AdaptiveIntegrator, RunEnd};
 use stepladder::scheme::{
     Compensated, KAHAN_LI8, Scheme, SchemeVisitor, SplittingTable, scheme_ids, visit_scheme,
@@ -539,6 +542,8 @@ pub struct RaceRecords {
     pub digits: Vec<DigitRow>,
     /// IAS15, measured by REBOUND, on the N-body scenes.
     pub ias15: Vec<crate::suite::ias15::Ias15Row>,
+    /// Why the eccentric orbit's smallest target is out of reach.
+    pub pericentre_lag: Option<PericentreLag>,
 }
 
 /// The cheapest of the named reaches.
@@ -888,6 +893,7 @@ pub fn race(
         nbody,
         digits,
         ias15,
+        pericentre_lag: PericentreLag::measure(&KeplerEccentric::default()),
     }
 }
 

@@ -328,3 +328,38 @@ fn the_exact_kepler_solutions_judge_down_to_their_rounding() {
         assert!(bound <= REFERENCE_SHARE * 1e-14);
     }
 }
+
+/// The eccentric orbit's unreached smallest target, explained: the worst
+/// error of the compensated twelfth-order pair is a lag along the orbit (a
+/// shift in time leaves under a tenth of it unexplained), found near
+/// pericentre, where the phase-space speed is `S_p = 2 pi ((1+e)/(1-e) +
+/// 1/(1-e)^4)^(1/2)` (a = 1, GM = 4 pi^2, w = 2 pi), and the energy the
+/// target allows there is below what one rounding of the pericentre
+/// position moves, `2u/(1-e)` of the energy.
+#[test]
+fn the_eccentric_orbit_floor_is_a_lag_at_pericentre() {
+    use stepladder::scene::KeplerEccentric;
+    use stepladder_lab::suite::pericentre_lag::PericentreLag;
+    let lag = super::common::suite()
+        .race
+        .pericentre_lag
+        .clone()
+        .expect("the pair reaches the end");
+    assert_eq!(
+        Some(&lag),
+        PericentreLag::measure(&KeplerEccentric::default()).as_ref()
+    );
+    let e = 0.6;
+    assert!((lag.stage_rounding_units - 2.0 / (1.0 - e)).abs() < 1e-12);
+    let pericentre_speed =
+        std::f64::consts::TAU * ((1.0 + e) / (1.0 - e) + 1.0 / (1.0 - e).powi(4)).sqrt();
+    assert!(
+        lag.speed > 0.9 * pericentre_speed && lag.speed <= pericentre_speed * (1.0 + 1e-12),
+        "worst point at speed {} of {pericentre_speed}",
+        lag.speed
+    );
+    assert!(lag.across_share < 0.1, "{}", lag.across_share);
+    assert!((lag.speed * lag.shift.abs() - lag.error).abs() < 0.1 * lag.error);
+    let u = f64::EPSILON / 2.0;
+    assert!(lag.energy_allowed(smallest_target()) < lag.stage_rounding_units * u);
+}
