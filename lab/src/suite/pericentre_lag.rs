@@ -53,17 +53,19 @@ impl PericentreLag {
             .ok()
             .filter(|r| r.end == RunEnd::Reached)?;
         let w = orbit.frequency();
-        let (t, s) = run.trajectory.iter().max_by(|a, b| {
-            let error = |(t, s): &(f64, _)| orbit.phase_distance(s, &orbit.exact(*t).unwrap());
-            error(a).total_cmp(&error(b))
-        })?;
-        let exact = orbit.exact(*t)?;
+        let (error, t, s, exact) = run
+            .trajectory
+            .iter()
+            .filter_map(|(t, s)| {
+                let exact = orbit.exact(*t)?;
+                Some((orbit.phase_distance(s, &exact), t, s, exact))
+            })
+            .max_by(|a, b| a.0.total_cmp(&b.0))?;
         let (dq, dv) = (s.q - exact.q, (s.v - exact.v) / w);
         let (tq, tv) = (exact.v, orbit.acceleration(&exact.q) / w);
         let speed = (tq.norm_squared() + tv.norm_squared()).sqrt();
         let shift = (dq.dot(&tq) + dv.dot(&tv)) / (speed * speed);
         let across = ((dq - tq * shift).norm_squared() + (dv - tv * shift).norm_squared()).sqrt();
-        let error = orbit.phase_distance(s, &exact);
         // the orbit starts at pericentre
         let start = orbit.initial();
         let (energy, pericentre_potential) = (orbit.energy(&start), orbit.potential(&start.q));
