@@ -8,15 +8,21 @@
 use std::path::{Path, PathBuf};
 
 /// What AUDIT.md is made from: the audit crate's sources, manifest and
-/// lock file (so the pinned crate versions), and the sources of the
-/// published crate under `src/` (the studies and verdicts that judge the
-/// audited methods; not the lab, which the audit never calls). `root` is
-/// the repository root.
+/// lock file (so the pinned crate versions), the sources of the published
+/// crate under `src/` (the studies and verdicts that judge the audited
+/// methods), and the N-body references its race reads from
+/// `lab/references/` (not the lab's code, which the audit never builds).
+/// `root` is the repository root.
 pub fn fingerprint(root: &Path) -> std::io::Result<String> {
     fingerprint_of(
         root,
         &["src", "audit/src", "audit/tests"],
-        &["audit/Cargo.toml", "audit/Cargo.lock"],
+        &[
+            "audit/Cargo.toml",
+            "audit/Cargo.lock",
+            "lab/references/pleiades.json",
+            "lab/references/outer-solar-system.json",
+        ],
     )
 }
 

@@ -101,6 +101,14 @@ enum Command {
     /// scheme (and each peer: ode_solvers' Dop853, numeris' Verner 9(8))
     /// needs to reach target errors.
     Work(WorkArgs),
+    /// The reference state the race judges an N-body scene against at its
+    /// end time, with where it comes from and its error bound, as JSON
+    /// (`pleiades` or `outer-solar-system`).
+    Reference {
+        /// Scene id: `pleiades` or `outer-solar-system`.
+        #[arg(long)]
+        scene: String,
+    },
     /// The sensitivity map: every coefficient of every catalogue table
     /// moved in turn, and the smallest change each claim of the guard
     /// rejects; writes lab/SENSITIVITY.md.
@@ -269,6 +277,10 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         Command::Speed(a) => cost_commands::speed(&a),
         Command::Work(a) => cost_commands::work(&a),
         Command::Sensitivity(a) => sensitivity_command::sensitivity(&a),
+        Command::Reference { scene } => {
+            println!("{}", crate::suite::race::reference_json(&scene)?);
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Corpus { threads, json } => corpus(threads, json),
         Command::Energy(a) => {
             let r = a.case.case()?.energy(&EnergySpec {

@@ -195,6 +195,24 @@ impl NbodyReference {
     }
 }
 
+/// The reference of the N-body scene `scene` as pretty JSON, every number
+/// written so that it parses back to the same double: what
+/// `stepladder reference` prints, and what the audit of published crates
+/// reads from `lab/references/` to judge its race without building the lab.
+pub fn reference_json(scene: &str) -> Result<String, stepladder::error::Error> {
+    let reference = NbodyScene::all()
+        .into_iter()
+        .find(|s| s.id() == scene)
+        .ok_or_else(|| {
+            stepladder::error::Error::InvalidScene(format!(
+                "no reference for {scene:?}: the N-body scenes of the race are {NBODY_SCENES:?}"
+            ))
+        })?
+        .reference();
+    serde_json::to_string_pretty(&reference)
+        .map_err(|e| stepladder::error::Error::InvalidScene(format!("{scene}: {e}")))
+}
+
 fn flat<const D: usize>(s: &State<D>) -> Vec<f64> {
     s.q.iter().chain(s.v.iter()).copied().collect()
 }
@@ -215,6 +233,14 @@ impl NbodyScene {
             NbodyScene::Pleiades(Pleiades::default()),
             NbodyScene::OuterSolarSystem(OuterSolarSystem::default()),
         ]
+    }
+
+    /// The scene's id.
+    pub fn id(&self) -> &'static str {
+        match self {
+            NbodyScene::Pleiades(s) => s.meta().id,
+            NbodyScene::OuterSolarSystem(s) => s.meta().id,
+        }
     }
 
     /// Runs `visitor` on the scene.

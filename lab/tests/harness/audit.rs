@@ -38,6 +38,8 @@ fn scratch_tree(name: &str) -> PathBuf {
         ("audit/tests/audit.rs", "#[test] fn t() {}"),
         ("audit/Cargo.toml", "[package]"),
         ("audit/Cargo.lock", "version = 4"),
+        ("lab/references/pleiades.json", "{}"),
+        ("lab/references/outer-solar-system.json", "{}"),
     ] {
         let path = root.join(file);
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
@@ -63,12 +65,14 @@ fn the_fingerprint_follows_what_the_audit_is_made_from_and_nothing_else() {
     // a file outside the inputs (not Rust) changes nothing either
     std::fs::write(root.join("src/notes.txt"), "text").unwrap();
     assert_eq!(fingerprint(&root).unwrap(), before);
-    // the library's studies, the audit's sources and its pinned versions do
+    // the library's studies, the audit's sources, its pinned versions and
+    // the race references it reads do
     for (file, text) in [
         ("src/scheme/mod.rs", "pub fn step() { }"),
         ("audit/tests/audit.rs", "#[test] fn u() {}"),
         ("audit/Cargo.lock", "version = 4\n"),
         ("src/scheme/new.rs", ""),
+        ("lab/references/outer-solar-system.json", "{ }"),
     ] {
         let was = fingerprint(&root).unwrap();
         std::fs::write(root.join(file), text).unwrap();

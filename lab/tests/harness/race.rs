@@ -363,3 +363,42 @@ fn the_eccentric_orbit_floor_is_a_lag_at_pericentre() {
     let u = f64::EPSILON / 2.0;
     assert!(lag.energy_allowed(smallest_target()) < lag.stage_rounding_units * u);
 }
+
+/// The references the audit of published crates reads from
+/// `lab/references/` (it races without building the lab) are the race's,
+/// number for number: the command prints them, and each committed file is
+/// its output for that scene.
+#[test]
+fn the_committed_references_are_the_race_s() {
+    for scene in NBODY_SCENES {
+        let path = super::common::root().join(format!("lab/references/{scene}.json"));
+        let committed =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let printed = super::cli::run(&["reference", "--scene", scene]);
+        assert!(printed.status.success(), "{scene}");
+        assert_eq!(
+            committed,
+            String::from_utf8_lossy(&printed.stdout),
+            "{} is stale: make it again with `cargo run --release -- reference --scene {scene} > lab/references/{scene}.json`",
+            path.display()
+        );
+        // every number parses back to the double the race judges against
+        let parsed: serde_json::Value = serde_json::from_str(&committed).unwrap();
+        assert_eq!(parsed["scene"], scene);
+        let values = parsed["state"].as_array().unwrap();
+        assert!(
+            values
+                .iter()
+                .all(|x| x.as_f64().is_some_and(f64::is_finite))
+        );
+    }
+}
+
+/// A scene the race has no reference for is refused with the ones it has.
+#[test]
+fn a_reference_is_refused_for_other_scenes() {
+    super::cli::refused(
+        &["reference", "--scene", "kepler-circular"],
+        "the N-body scenes of the race are",
+    );
+}
