@@ -9,9 +9,10 @@ use stepladder::scheme::Force;
 use stepladder::scheme::{Advance, RunEnd};
 
 /// The scene dimensions the glue instantiates its fixed-size types for
-/// (the oscillator is 1, the Kepler orbits 2).
+/// (the oscillator is 1, the Kepler orbits 2; for brahe's pair also the
+/// race's N-body scenes, 14 and 18).
 fn unsupported(d: usize) -> ! {
-    panic!("audit glue: scenes of dimension {d} are not wired (1 and 2 are)")
+    panic!("audit glue: scenes of dimension {d} are not wired for this crate")
 }
 
 // ----------------------------------------------------------------- utsuroi
@@ -550,3 +551,175 @@ pub fn russell_dopri5(
         reported_evaluations: Some(stats.n_function as u64),
     }
 }
+
+// ------------------------------------------------------------------ brahe
+
+/// The force callback as brahe's dynamics closure must hold it: brahe boxes
+/// its dynamics as `'static + Send + Sync`, and the callback is borrowed for
+/// one call of the glue.
+struct BorrowedForce(*const Force<'static, f64>);
+
+// SAFETY: the pointer is dereferenced only inside brahe's `step`, which
+// evaluates its stages one after another on the calling thread (rkn1210.rs,
+// `step_internal`), and the integrator holding it is built and dropped
+// within the glue call that borrows the force: it never outlives the
+// borrow, and no other thread sees it.
+unsafe impl Send for BorrowedForce {}
+unsafe impl Sync for BorrowedForce {}
+
+impl BorrowedForce {
+    fn new(force: &Force<'_, f64>) -> Self {
+        // SAFETY: only the lifetime is erased; see the impls above.
+        Self(unsafe {
+            std::mem::transmute::<*const Force<'_, f64>, *const Force<'static, f64>>(force)
+        })
+    }
+
+    fn call(&self, q: &[f64], a: &mut [f64]) {
+        // SAFETY: the force outlives every call (see above).
+        unsafe { (*self.0)(q, a) }
+    }
+}
+
+/// brahe's `RKN1210SIntegrator` with state `y = (q, v)` of `M = 2 N`
+/// components, its dynamics `(v, a(q))`. `attempts` counts the step
+/// attempts from the times brahe passes: every attempt evaluates its first
+/// stage at the step's start (node `c1 = 0`), no other stage does.
+macro_rules! brahe_rkn1210 {
+    ($n:literal, $m:literal, $force:expr, $config:expr) => {{
+        use std::sync::Arc;
+        use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+        let force = BorrowedForce::new($force);
+        let start = Arc::new(AtomicU64::new(f64::NAN.to_bits()));
+        let attempts = Arc::new(AtomicU64::new(0));
+        let (seen, counted) = (start.clone(), attempts.clone());
+        let dynamics = move |t: f64,
+                             y: &brahe_nalgebra::SVector<f64, $m>,
+                             _: Option<&brahe_nalgebra::SVector<f64, 0>>|
+              -> Result<
+            brahe_nalgebra::SVector<f64, $m>,
+            brahe::utils::errors::BraheError,
+        > {
+            if t.to_bits() == seen.load(Relaxed) {
+                counted.fetch_add(1, Relaxed);
+            }
+            let mut dy = brahe_nalgebra::SVector::<f64, $m>::zeros();
+            dy.as_mut_slice()[..$n].copy_from_slice(&y.as_slice()[$n..]);
+            force.call(&y.as_slice()[..$n], &mut dy.as_mut_slice()[$n..]);
+            Ok(dy)
+        };
+        use brahe::integrators::SIntegratorConstructor;
+        let integrator = brahe::integrators::RKN1210SIntegrator::<$m, 0>::with_config(
+            Box::new(dynamics),
+            None,
+            None,
+            None,
+            $config,
+        );
+        (integrator, start, attempts)
+    }};
+}
+
+/// One step of brahe's RKN12(10) at `h`, its estimate never rejecting:
+/// with both tolerances infinite every component's allowance is infinite,
+/// the normalised error 0 (rkn1210.rs, `compute_normalized_error_s`), and
+/// the step is accepted at the `h` given. What remains is the method
+/// itself, twelfth order by its claim.
+pub fn brahe_rkn1210_step(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f64>) {
+    use brahe::integrators::{IntegratorConfig, SIntegrator};
+    macro_rules! run {
+        ($n:literal, $m:literal) => {{
+            let config = IntegratorConfig::adaptive(f64::INFINITY, f64::INFINITY);
+            let (integrator, _, _) = brahe_rkn1210!($n, $m, force, config);
+            let y = brahe_nalgebra::SVector::<f64, $m>::from_iterator(
+                q.iter().chain(v.iter()).copied(),
+            );
+            let step = integrator
+                .step(0.0, y, None, Some(h))
+                .unwrap_or_else(|e| panic!("brahe RKN1210: one step of {h} failed: {e}"));
+            assert_eq!(
+                step.dt_used, h,
+                "brahe RKN1210 changed a step it cannot reject"
+            );
+            q.copy_from_slice(&step.state.as_slice()[..$n]);
+            v.copy_from_slice(&step.state.as_slice()[$n..]);
+        }};
+    }
+    match q.len() {
+        1 => run!(1, 2),
+        2 => run!(2, 4),
+        d => unsupported(d),
+    }
+}
+
+/// brahe's RKN12(10) from `t0` to `t1` at absolute and relative tolerance
+/// `tol`, its other settings the documented defaults
+/// (`IntegratorConfig::adaptive`, config.rs). brahe steps one accepted step
+/// a call (`SIntegrator::step`, retrying rejected attempts inside) and
+/// leaves the driving to the caller: the glue starts with the whole
+/// interval as the proposal, as ode_solvers' `new` does, takes each next
+/// proposal brahe returns (`dt_next`), and shortens only the last step to
+/// land on `t1`. The crate keeps no statistics: the accepted steps are
+/// counted here, the attempts from the times of its first stages.
+pub fn brahe_rkn1210(
+    q: &mut [f64],
+    v: &mut [f64],
+    t0: f64,
+    t1: f64,
+    tol: f64,
+    force: &Force<f64>,
+) -> Advance {
+    use brahe::integrators::{IntegratorConfig, SIntegrator};
+    use std::sync::atomic::Ordering::Relaxed;
+    let mut run = Advance::reached();
+    macro_rules! run {
+        ($n:literal, $m:literal) => {{
+            let config = IntegratorConfig::adaptive(tol, tol);
+            let (integrator, start, attempts) = brahe_rkn1210!($n, $m, force, config);
+            let mut y = brahe_nalgebra::SVector::<f64, $m>::from_iterator(
+                q.iter().chain(v.iter()).copied(),
+            );
+            let (mut t, mut dt) = (t0, t1 - t0);
+            while t < t1 {
+                let h = dt.min(t1 - t);
+                start.store(t.to_bits(), Relaxed);
+                match integrator.step(t, y, None, Some(h)) {
+                    Ok(step) if step.state.iter().all(|x| x.is_finite()) => {
+                        t = if step.dt_used == t1 - t {
+                            t1
+                        } else {
+                            t + step.dt_used
+                        };
+                        y = step.state;
+                        dt = step.dt_next;
+                        run.accepted += 1;
+                    }
+                    _ => {
+                        run.end = RunEnd::GaveUp;
+                        break;
+                    }
+                }
+                if run.accepted >= BRAHE_STEP_LIMIT {
+                    run.end = RunEnd::StepLimit;
+                    break;
+                }
+            }
+            q.copy_from_slice(&y.as_slice()[..$n]);
+            v.copy_from_slice(&y.as_slice()[$n..]);
+            run.rejected = attempts.load(Relaxed).saturating_sub(run.accepted);
+        }};
+    }
+    match q.len() {
+        1 => run!(1, 2),
+        2 => run!(2, 4),
+        14 => run!(14, 28),
+        18 => run!(18, 36),
+        d => unsupported(d),
+    }
+    run
+}
+
+/// Most steps a brahe run may accept: its driver is the caller's, and the
+/// loosest controller setting never needs more than 10^5 steps on the
+/// audit's scenes.
+pub const BRAHE_STEP_LIMIT: u64 = 1_000_000;

@@ -11,6 +11,7 @@
 
 pub mod glue;
 pub mod methods;
+pub mod race;
 pub mod report;
 
 use stepladder::internals::accuracy::order::{OrderSpec, global_order};

@@ -1216,6 +1216,110 @@ pub fn russell_dopri5() -> Audit {
     ))
 }
 
+// ------------------------------------------------------------------- brahe
+
+/// What brahe says of its RKN12(10), for both ways it is audited.
+const BRAHE_ORDER: Property = said(
+    Order,
+    "12th order accurate solution with 10th order embedded error estimate",
+    "brahe-1.8.1/src/integrators/rkn1210.rs:47",
+);
+
+/// RKN12(10) is an explicit Runge-Kutta-Nystrom pair: neither symplectic
+/// nor symmetric in theory, and its energy may drift.
+const RKN_NOT_GEOMETRIC: [Property; 3] = [
+    unsaid(
+        Symplectic,
+        "explicit Runge-Kutta-Nystrom: not symplectic in theory (tested: no)",
+    ),
+    unsaid(
+        Symmetric,
+        "explicit Runge-Kutta-Nystrom: not symmetric in theory (tested: no)",
+    ),
+    unsaid(
+        Energy,
+        "tested: drift allowed, as for a scheme neither symplectic nor symmetric",
+    ),
+];
+
+/// brahe's RKN12(10) as a fixed-step method: one `step` at the `h` given,
+/// with tolerances so wide that no attempt is rejected (see the glue).
+pub fn brahe_rkn1210_fixed() -> Audit {
+    Audit::Fixed(audit_fixed(
+        Provenance {
+            krate: "brahe 1.8.1",
+            method: "RKN1210SIntegrator, every step accepted",
+            properties: const {
+                &[
+                    BRAHE_ORDER,
+                    RKN_NOT_GEOMETRIC[0],
+                    RKN_NOT_GEOMETRIC[1],
+                    RKN_NOT_GEOMETRIC[2],
+                    said(
+                        Evaluations,
+                        "17 function evaluations per step",
+                        "brahe-1.8.1/src/integrators/rkn1210.rs:46",
+                    ),
+                ]
+            },
+            minimum_evaluations: 17,
+            test: "brahe_rkn1210_fixed",
+        },
+        &BlackBox::new(
+            claims("brahe-rkn1210", 12, false, false, 17, false, "brahe 1.8.1"),
+            glue::brahe_rkn1210_step,
+        ),
+        // the order is the harness's limit, not the crate's: see `why`
+        except(
+            [Inconclusive, Pass, Pass, Pass, Pass],
+            "twelfth order is past what a fixed-step ladder in doubles resolves on these scenes: a settled local order needs two halvings, 2^24 in error, and the error goes from its pre-asymptotic range to the round-off floor in about one (stepladder's own DPRKN12 table, the same tableau, is inconclusive on the same ladders, with the same local orders on the Kepler orbit); called directly, brahe's step shows order 12.2 on the oscillator and 17 calls a step (tests/independent.rs, brahe_rkn1210)",
+            &[],
+        ),
+    ))
+}
+
+/// brahe's RKN12(10) under its own step control, driven to the end time
+/// by the glue the way the crate leaves it to its caller.
+pub fn brahe_rkn1210() -> Audit {
+    Audit::Adaptive(audit_adaptive(
+        Provenance {
+            krate: "brahe 1.8.1",
+            method: "RKN1210SIntegrator",
+            properties: const {
+                &[
+                    BRAHE_ORDER,
+                    said(
+                        Estimate,
+                        "12th order accurate solution with 10th order embedded error estimate",
+                        "brahe-1.8.1/src/integrators/rkn1210.rs:47",
+                    ),
+                    unsaid(
+                        Evaluations,
+                        "17 per attempt (rkn1210.rs:46); shown per accepted step from the calls counted, rejected attempts included, not judged",
+                    ),
+                ]
+            },
+            minimum_evaluations: 17,
+            test: "brahe_rkn1210",
+        },
+        // an estimate from a tenth-order solution behaves like h^11; brahe
+        // grows accepted steps by (1/err)^(1/12) (rkn1210.rs, "uses 12th
+        // order for accept"), which changes the error it settles at by a
+        // constant factor, not the exponent 12/11
+        &AdaptiveBlackBox::new(
+            "brahe-rkn1210",
+            AdaptiveClaims::pair(12, 10),
+            glue::brahe_rkn1210,
+        ),
+        AdaptiveExpectation {
+            verdict: Pass,
+            first_order_estimate: false,
+            why: "the published 12(10) pair with an error-per-step controller: global error ~ TOL^(12/11)",
+            evidence: &[],
+        },
+    ))
+}
+
 /// An audited method: its test name and the function that audits it.
 pub type Entry = (&'static str, fn() -> Audit);
 
@@ -1244,4 +1348,6 @@ pub const ALL: &[Entry] = &[
     ("peroxide_tsit45", peroxide_tsit45),
     ("russell_rk4", russell_rk4),
     ("russell_dopri5", russell_dopri5),
+    ("brahe_rkn1210_fixed", brahe_rkn1210_fixed),
+    ("brahe_rkn1210", brahe_rkn1210),
 ];
