@@ -274,7 +274,12 @@ pub fn race_section(race: &RaceRecords) -> String {
          stops every plain contender above 1e-12; the compensated pairs carry what each \
          addition drops (Knuth's TwoSum) and lose only the rounding of the increments \
          themselves. Where neither side reaches a target the reference resolves, the \
-         outcome gives the smallest error any run reached.\n\n",
+         outcome gives the smallest error any run reached.\n\n\
+         One published twelfth-order integrator is raced elsewhere: brahe's experimental \
+         RKN12(10), whose build (over three hundred crates) does not fit this one, runs in \
+         `audit/AUDIT.md` against the crate's two RKN12(10) pairs on these four scenes and \
+         references (`lab/references/`, written by `stepladder reference`), each judged by \
+         its error at the end time.\n\n",
         sci(NBODY_FIRST_TOLERANCE),
         sci(NBODY_TOLERANCES[NBODY_TOLERANCES.len() - 1]),
         NBODY_FIRST_STEPS,

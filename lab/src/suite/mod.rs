@@ -214,8 +214,11 @@ pub fn run_suite(
     })?;
     part_done("verdict corpus");
     starting("round-off floors");
-    let roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
-    part_done("round-off floors, long runs and Brouwer's law");
+    let mut roundoff = crate::suite::round_off::run_roundoff_suite(threads)?;
+    part_done("round-off floors and long runs");
+    starting("Brouwer's law");
+    roundoff.brouwer = crate::suite::round_off::brouwer_runs(threads)?;
+    part_done("Brouwer's law (a million steps, plain and compensated)");
     starting("speed against error");
     let (work, work_timing, speed) = speed_against_error(&cases, threads);
     part_done("speed against error");

@@ -1,8 +1,9 @@
 //! The round-off studies of the report, run in parallel: floors against the
 //! step on the oscillator and the circular orbit, long runs of their
-//! exactly conserved quantities, and Brouwer's law on the outer solar
-//! system. Jobs are independent and their results
-//! stored by job, so the records do not depend on the thread count.
+//! exactly conserved quantities, and, as a part of its own so that the
+//! report's timings show its cost, Brouwer's law on the outer solar
+//! system. Jobs are independent and their results stored by job, so the
+//! records do not depend on the thread count.
 
 use stepladder::error::Error;
 use stepladder::internals::compensated::{pair_ids, paired_ids};
@@ -22,7 +23,7 @@ pub struct RoundoffRecords {
     /// Long runs, scene-major, in pair order (plain schemes, then variants).
     pub longrun: Vec<LongrunRecord>,
     /// Brouwer's law on the outer solar system: DPRKN8 plain, then with
-    /// compensated sums.
+    /// compensated sums ([`brouwer_runs`]).
     pub brouwer: Vec<BrouwerRun>,
 }
 
@@ -46,7 +47,7 @@ pub const DPRKN8_FIXED_COMPENSATED: Compensated<stepladder::scheme::NystromTable
 
 /// Runs DPRKN8, plain or compensated, for a million steps on the outer
 /// solar system, its runs on one thread (the suite runs the two in
-/// parallel with the rest).
+/// parallel, [`brouwer_runs`]).
 pub fn brouwer_run(compensated: bool) -> Result<BrouwerRun, Error> {
     let spec = RoundOffSpec {
         threads: Some(1),
@@ -94,25 +95,36 @@ pub fn longrun_scenes() -> Vec<AnyScene> {
     ]
 }
 
+/// Brouwer's law for DPRKN8 plain, then compensated, the two on `threads`
+/// threads.
+pub fn brouwer_runs(threads: usize) -> Result<Vec<BrouwerRun>, Error> {
+    stepladder::internals::parallel::parallel_map(
+        &[false, true],
+        threads,
+        |c| brouwer_run(*c),
+        &|_, _| {},
+    )
+    .into_iter()
+    .collect()
+}
+
 enum Job {
     Floor(usize, &'static str),
     Long(usize, &'static str),
-    Brouwer(bool),
 }
 
 enum Done {
     Floor(Result<PairRecord, Error>),
     Long(Result<LongrunRecord, Error>),
-    Brouwer(Result<BrouwerRun, Error>),
 }
 
-/// Runs every round-off study of the report on `threads` threads.
+/// Runs the floors and long runs of the report on `threads` threads, with
+/// Brouwer's law ([`brouwer_runs`]) left to the caller.
 pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
     let floors = floor_scenes();
     let longs = longrun_scenes();
-    // the million-step runs and the floor ladders are the longest jobs:
-    // first, so the long runs fill in
-    let mut jobs: Vec<Job> = vec![Job::Brouwer(false), Job::Brouwer(true)];
+    // the floor ladders are the longest jobs: first, so the long runs fill in
+    let mut jobs: Vec<Job> = Vec::new();
     for (i, _) in floors.iter().enumerate() {
         jobs.extend(paired_ids().into_iter().map(|id| Job::Floor(i, id)));
     }
@@ -125,17 +137,15 @@ pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
         |job| match *job {
             Job::Floor(s, id) => Done::Floor(study_pair(&floors[s].0, id, &floors[s].1)),
             Job::Long(s, id) => Done::Long(longrun_of(&longs[s], id, &LongrunSpec::default())),
-            Job::Brouwer(compensated) => Done::Brouwer(brouwer_run(compensated)),
         },
         &|_, _| {},
     );
     let mut pairs: Vec<Vec<PairRecord>> = floors.iter().map(|_| Vec::new()).collect();
-    let (mut longrun, mut brouwer) = (Vec::new(), Vec::new());
+    let mut longrun = Vec::new();
     for (job, done) in jobs.iter().zip(results) {
         match (job, done) {
             (Job::Floor(s, _), Done::Floor(r)) => pairs[*s].push(r?),
             (Job::Long(_, _), Done::Long(r)) => longrun.push(r?),
-            (Job::Brouwer(_), Done::Brouwer(r)) => brouwer.push(r?),
             _ => unreachable!("every job ran and produced its own kind of record"),
         }
     }
@@ -147,6 +157,6 @@ pub fn run_roundoff_suite(threads: usize) -> Result<RoundoffRecords, Error> {
     Ok(RoundoffRecords {
         floors,
         longrun,
-        brouwer,
+        brouwer: Vec::new(),
     })
 }
