@@ -719,7 +719,10 @@ pub fn brahe_rkn1210(
     run
 }
 
-/// Most steps a brahe run may accept: its driver is the caller's, and the
-/// loosest controller setting never needs more than 10^5 steps on the
-/// audit's scenes.
+/// Most steps a brahe run may accept before the glue stops it and reports
+/// the step limit. brahe accepts any step once it has shrunk to its minimum
+/// (`min_step`, 1e-12 time units by default, config.rs; rkn1210.rs accepts
+/// when `error <= 1.0 || min_step_reached`), so a run stuck there would not
+/// end; the audit's longest runs accept under 2,500 steps (the Pleiades at
+/// 1e-16).
 pub const BRAHE_STEP_LIMIT: u64 = 1_000_000;
