@@ -699,7 +699,7 @@ pub fn brahe_rkn1210(
                         break;
                     }
                 }
-                if run.accepted >= BRAHE_STEP_LIMIT {
+                if t < t1 && run.accepted >= BRAHE_STEP_LIMIT {
                     run.end = RunEnd::StepLimit;
                     break;
                 }

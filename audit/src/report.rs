@@ -547,19 +547,27 @@ fn race_summary(races: &[SceneRace]) -> String {
                 _ => format!("neither at every one ({lo:.2} to {hi:.2})"),
             }
         };
-        let only = |who: &str, mine: &dyn Fn(&Contender) -> bool| {
+        // the judged targets one side reaches and the other does not
+        let reached = |c: &Contender, t: f64| c.evaluations(t).cost().is_some();
+        let only = |who: &str, brahe_side: bool| {
             let targets: Vec<String> = judged
                 .iter()
                 .filter(|&&t| {
-                    let reached = |c: &Contender| c.evaluations(t).cost().is_some();
-                    let brahe = reached(&race.contenders[0]);
-                    let own = race.contenders[1..].iter().any(reached);
-                    mine(&race.contenders[0]) && brahe && !own
-                        || !mine(&race.contenders[0]) && own && !brahe
+                    let brahe = reached(&race.contenders[0], t);
+                    let own = race.contenders[1..].iter().any(|c| reached(c, t));
+                    if brahe_side {
+                        brahe && !own
+                    } else {
+                        own && !brahe
+                    }
                 })
                 .map(|t| format!("{t:.0e}"))
                 .collect();
-            (!targets.is_empty()).then(|| format!("; only {who} reaches {}", targets.join(", ")))
+            if targets.is_empty() {
+                String::new()
+            } else {
+                format!("; only {who} reaches {}", targets.join(", "))
+            }
         };
         let _ = writeln!(
             s,
@@ -567,8 +575,8 @@ fn race_summary(races: &[SceneRace]) -> String {
             race.scene,
             range(&|c, t| c.evaluations(t)),
             range(&|c, t| c.seconds(t)),
-            only("brahe", &|_| true).unwrap_or_default(),
-            only("stepladder", &|_| false).unwrap_or_default(),
+            only("brahe", true),
+            only("stepladder", false),
         );
     }
     s.push_str(
@@ -615,15 +623,8 @@ pub fn race_section(races: &[SceneRace]) -> String {
     for race in races {
         let _ = writeln!(
             s,
-            "| `{}` | {} | {} | {} |",
-            race.scene,
-            race.t_end,
-            race.reference,
-            if race.reference_error == 0.0 {
-                "exact (its rounding only)".to_string()
-            } else {
-                format!("{:.2e}", race.reference_error)
-            }
+            "| `{}` | {} | {} | {:.2e} |",
+            race.scene, race.t_end, race.reference, race.reference_error
         );
     }
     let _ = writeln!(
