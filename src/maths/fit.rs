@@ -296,6 +296,23 @@ mod tests {
             .collect()
     }
 
+    /// The jackknife of the mean is the textbook standard error: leaving
+    /// `x_i` out moves the mean to `m_i` with `m_i - mean(m) = -(x_i -
+    /// xbar)/(n-1)`, so `(n-1)/n sum (m_i - mean(m))^2 = s^2/n` exactly,
+    /// `s^2` the sample variance with `n - 1` in its denominator.
+    #[test]
+    fn the_jackknife_of_the_mean_is_the_sample_deviation_over_root_n() {
+        let x = [2.5, -1.0, 4.0, 0.5, 9.25, 3.0, 1.75];
+        let n = x.len() as f64;
+        let sum: f64 = x.iter().sum();
+        let xbar = sum / n;
+        let s2 = x.iter().map(|v| (v - xbar).powi(2)).sum::<f64>() / (n - 1.0);
+        let left_out: Vec<f64> = x.iter().map(|v| (sum - v) / (n - 1.0)).collect();
+        let se = jackknife_standard_error(&left_out);
+        // a few roundings of order-one numbers
+        assert!((se / (s2 / n).sqrt() - 1.0).abs() < 1e-14, "{se}");
+    }
+
     #[test]
     fn exact_power_law_is_recovered_with_a_vanishing_interval() {
         let f = power_law(&ladder(0.1, 6, |h| 3.0 * h * h)).unwrap();
