@@ -68,6 +68,12 @@ pub struct Proportionality {
     /// Beside it, the accepted steps against the tolerance, `N ~ TOL^s`:
     /// the controller's claim is `s = -1/m`.
     pub step_scaling: Option<PowerLaw>,
+    /// And the adaptive error over the fixed-step error at the same step
+    /// count against the tolerance, `r ~ TOL^rho`: `rho` is 0 once the
+    /// controller's distribution of steps over the run has settled, so the
+    /// exponent is `-p s + rho` with `p` the method's order (see the
+    /// module documentation of the ladder).
+    pub error_ratio: Option<PowerLaw>,
 }
 
 impl Proportionality {
