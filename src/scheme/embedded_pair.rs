@@ -27,6 +27,15 @@
 //!   for any smooth change and still a bounded retreat where the estimate is
 //!   non-finite.
 //!
+//! The first step is the motion's own time scale, and the pair's estimate
+//! corrects it (see `first_trial` below): the trial is `||y0|| /
+//! ||f(y0)||`, the time in which the state would change by its own size, and
+//! when the estimate rejects it, the retry is at the step the estimate asks
+//! for, `safety ||err||^(-1/(q+1))` of the trial, however far below a fifth
+//! (down to [`FIRST_RETRY_FLOOR`]). The `0.2` limit guards a run whose step
+//! is already about right against one odd estimate; the first trial has no
+//! such history.
+//!
 //! With compensated sums ([`EmbeddedPair::with_compensated_sums`]) the
 //! state is carried as `value + low` and each step's increments are added
 //! by Knuth's TwoSum ([`crate::scheme::Kahan`]): the step no longer loses
@@ -56,6 +65,13 @@ use std::time::Instant;
 
 /// Most steps (accepted and rejected) one run may take.
 pub const MAX_STEPS: u64 = 2_000_000;
+
+/// The smallest ratio of the retry to a rejected first trial. The trial is
+/// the motion's time scale; an estimate asking for less than `1e-4` of it
+/// (an error `1e4^(q+1)` times the tolerance) is far outside the range where
+/// it behaves like `h^(q+1)`, and a second retry from `1e-4` of the scale
+/// costs one step where a step too small for good would cost many.
+pub const FIRST_RETRY_FLOOR: f64 = 1e-4;
 
 /// The step-size controller's constants (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,6 +106,17 @@ impl Controller {
         }
         let optimal = self.safety * err.powf(-self.exponent);
         optimal.clamp(self.max_shrink, growth_cap)
+    }
+
+    /// The ratio of the retry to a rejected first trial: the step the
+    /// estimate asks for, below a fifth if need be, no less than
+    /// [`FIRST_RETRY_FLOOR`]; a non-finite estimate retreats by
+    /// `max_shrink` as any other.
+    fn first_retry_ratio(&self, err: f64) -> f64 {
+        if !err.is_finite() {
+            return self.max_shrink;
+        }
+        (self.safety * err.powf(-self.exponent)).clamp(FIRST_RETRY_FLOOR, 1.0)
     }
 }
 
@@ -165,39 +192,37 @@ fn scaled_norm<const D: usize>(e: &State<D>, y0: &State<D>, y1: &State<D>, tol: 
 }
 
 impl<const S: usize> EmbeddedPair<S> {
-    /// The first step, by HNW I, II.4 ("starting step size"): an explicit
-    /// Euler step of `h0 = 0.01 ||y0|| / ||f0||` measures how fast `f`
-    /// changes, and `h1 = (0.01 / max(||f0||, ||f'||))^(1/(q+1))` makes the
-    /// estimate about a hundredth of the tolerance; the smaller of `h1`
-    /// and `100 h0`. One force evaluation.
-    fn first_step<P: Scene<D>, const D: usize>(
+    /// The first step to try: `||y0|| / ||f(y0)||` in the scaled norm, the
+    /// time in which the state would change by its own size (HNW I, II.4:
+    /// `100 h0`, their starting step's upper bound), or `1e-4` when the
+    /// state or its rate is too small to measure (their `h0 = 1e-6`), no
+    /// longer than the run. No force evaluation.
+    ///
+    /// HNW's own guess, `h1 = (0.01 / max(||f0||, ||f'||))^(1/(q+1))`, is not
+    /// used: it takes the local error of a step `h` to be about `h^(q+1)`
+    /// times the state's first or second derivative, which holds in units
+    /// where the motion's time scale is one. In units where it is `tau`, the
+    /// `(q+1)`-th derivative is `tau^(q-1)` times smaller than the second,
+    /// and the guess that much too short: on the outer solar system in days
+    /// (`tau` about 700 days) DPRKN12(10)'s first step at tolerance `1e-12`
+    /// was 0.7 days, and growth by at most five a step took five steps to
+    /// reach the 400-day steps its estimate allows.
+    fn first_trial<const D: usize>(
         &self,
-        scene: &P,
         y0: &State<D>,
         a0: &nalgebra::SVector<f64, D>,
         tol: f64,
         t_end: f64,
     ) -> f64 {
         let f0 = State::new(y0.v, *a0);
-        let zero = State::new(nalgebra::SVector::zeros(), nalgebra::SVector::zeros());
         let d0 = scaled_norm(y0, y0, y0, tol);
         let d1 = scaled_norm(&f0, y0, y0, tol);
-        let h0 = if d0 < 1e-5 || d1 < 1e-5 {
-            1e-6
+        let scale = if d0 < 1e-5 || d1 < 1e-5 {
+            1e-4
         } else {
-            0.01 * d0 / d1
+            d0 / d1
         };
-        let q1 = y0.q + y0.v * h0;
-        let f1 = State::new(y0.v + a0 * h0, scene.acceleration(&q1));
-        let df = State::new(f1.q - f0.q, f1.v - f0.v);
-        let d2 = scaled_norm(&df, y0, &zero, tol) / h0;
-        let largest = d1.max(d2);
-        let h1 = if largest <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
-        } else {
-            (0.01 / largest).powf(self.controller.exponent)
-        };
-        (100.0 * h0).min(h1).min(t_end)
+        scale.min(t_end)
     }
 }
 
@@ -239,8 +264,7 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
         let mut low = State::new(nalgebra::SVector::zeros(), nalgebra::SVector::zeros());
         let mut a = scene.acceleration(&y.q);
         let mut evaluations = 1u64;
-        let mut h = self.first_step(scene, &y, &a, tol, t_end);
-        evaluations += 1;
+        let mut h = self.first_trial(&y, &a, tol, t_end);
         let mut run = AdaptiveRun {
             trajectory: vec![(0.0, y)],
             evaluations: 0,
@@ -319,7 +343,11 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
             } else {
                 run.rejected += 1;
                 let err = if finite { err } else { f64::INFINITY };
-                h *= self.controller.ratio(err, 1.0);
+                h *= if run.accepted == 0 {
+                    self.controller.first_retry_ratio(err)
+                } else {
+                    self.controller.ratio(err, 1.0)
+                };
                 just_rejected = true;
             }
         }
@@ -359,6 +387,37 @@ mod tests {
         assert!(worst < 1e-14, "largest error {worst:e}");
     }
 
+    /// A rejected first trial is retried at the step its estimate asks for:
+    /// `0.9 err^(-1/5)` for a fifth-power estimate, below a fifth when the
+    /// estimate is far over, down to the floor; a later rejection never
+    /// retreats by more than a fifth.
+    #[test]
+    fn a_rejected_first_trial_is_retried_where_its_estimate_points() {
+        let c = Controller::standard(5);
+        assert!((c.first_retry_ratio(1e10) - 0.9e-2).abs() < 1e-15);
+        assert_eq!(c.first_retry_ratio(1e40), FIRST_RETRY_FLOOR);
+        assert_eq!(c.first_retry_ratio(0.5), 1.0);
+        assert_eq!(c.first_retry_ratio(f64::INFINITY), c.max_shrink);
+        assert_eq!(c.ratio(1e10, 1.0), c.max_shrink);
+    }
+
+    /// On the circular orbit the first trial is the state's size over its
+    /// rate in the scaled norm, `0.025` of a year, and DPRKN6(4) at tolerance
+    /// `1e-14` steps `t_end / 3189 = 8.9e-4`, 28 times shorter: the trial's
+    /// estimate is about `0.59 * 28^5 = 1e7` times the tolerance. Retreats
+    /// by a fifth need three rejections (`0.2^2 = 0.04 > 1/28`); the
+    /// estimate's own step needs one, two where the trial is outside the
+    /// estimate's asymptotic range. The orbit needs no other rejection.
+    #[test]
+    fn the_first_step_costs_at_most_two_rejections_on_the_circular_orbit() {
+        let scene = KeplerCircular;
+        let run = DPRKN6_ADAPTIVE
+            .run(&scene, scene.default_t_end(), 1e-14)
+            .unwrap();
+        assert_eq!(run.end, RunEnd::Reached);
+        assert!(run.rejected <= 2, "{} rejections", run.rejected);
+    }
+
     #[test]
     fn bad_requests_are_refused_not_panicked_on() {
         let scene = KeplerCircular;
@@ -377,8 +436,8 @@ mod tests {
     }
 
     /// Every evaluation is counted: the scene's own count equals the run's,
-    /// five a step tried (first same as last), one for the start and one
-    /// for the first step's guess; the run ends exactly at `t_end`.
+    /// five a step tried (first same as last) and one for the start (the
+    /// first trial needs none); the run ends exactly at `t_end`.
     #[test]
     fn evaluations_are_counted_and_the_run_ends_at_t_end() {
         let scene = Counted::new(KeplerEccentric::default());
@@ -386,7 +445,7 @@ mod tests {
         let run = DPRKN6_ADAPTIVE.run(&scene, t_end, 1e-8).unwrap();
         assert_eq!(run.end, RunEnd::Reached);
         assert_eq!(run.evaluations, scene.evaluations());
-        assert_eq!(run.evaluations, 2 + 5 * (run.accepted + run.rejected));
+        assert_eq!(run.evaluations, 1 + 5 * (run.accepted + run.rejected));
         assert_eq!(run.trajectory.len() as u64, run.accepted + 1);
         assert_eq!(run.trajectory.last().unwrap().0, t_end);
         assert!(run.rejected > 0, "an eccentric orbit needs a few retries");
