@@ -88,6 +88,22 @@ pub const TWIN_SCALE: f64 = 1.0 + 1.0 / (1u64 << 20) as f64;
 /// round-off.
 pub const EXACT_SOLUTION_ULPS: f64 = 16.0;
 
+/// The phase-space size of rounding each coordinate of `s` once, by half an
+/// ulp, in the scene's [`phase_distance`](crate::scene::Scene::phase_distance):
+/// the error of an exact solution computed in higher precision (double-double,
+/// as the Kepler orbits' are) and rounded to doubles, the least any reference
+/// in doubles carries.
+pub fn rounding_distance<S: crate::scene::Scene<D>, const D: usize>(
+    scene: &S,
+    s: &crate::state::State<D>,
+) -> f64 {
+    let half_ulp = |x: f64| 0.5 * (x.abs().next_up() - x.abs());
+    let w = scene.frequency();
+    let q: f64 = s.q.iter().map(|&x| half_ulp(x).powi(2)).sum();
+    let v: f64 = s.v.iter().map(|&x| (half_ulp(x) / w).powi(2)).sum();
+    (q + v).sqrt()
+}
+
 /// The window's reference order is the median local order of this many of
 /// its finest rungs: the most asymptotic ones, and a median of three is not
 /// moved by one erratic rung.
@@ -485,3 +501,21 @@ pub const SCAN_END: f64 = 1e6;
 /// accepts: below every stability limit worth a step, and a step that
 /// changes the state by less than its rounding can show over a run.
 pub const SCAN_START: f64 = 1e-6;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{KeplerCircular, Scene};
+
+    /// The circular orbit's start, `q = (1, 0)`, `v = (0, 2 pi)`, `w = 2 pi`:
+    /// half an ulp of 1 is `2^-53`, of `2 pi` (in `[4, 8)`) `2^-51`, of 0 a
+    /// subnormal that adds nothing.
+    #[test]
+    fn rounding_is_half_an_ulp_a_coordinate_in_the_phase_distance() {
+        let scene = KeplerCircular;
+        let w = std::f64::consts::TAU;
+        let expected = (2f64.powi(-106) + (2f64.powi(-51) / w).powi(2)).sqrt();
+        let got = rounding_distance(&scene, &scene.initial());
+        assert!((got / expected - 1.0).abs() < 1e-15, "{got:e} {expected:e}");
+    }
+}

@@ -23,6 +23,7 @@
 //! solar system a double-double integration certified to `5e-17`.
 
 use stepladder::internals::cost::work_points::{Reach, cost_to_reach};
+use stepladder::internals::tolerance::rounding_distance;
 use stepladder::scene::{KeplerCircular, KeplerEccentric, OuterSolarSystem, Pleiades, Scene};
 use stepladder::scheme::{
     AdaptiveBlackBox, AdaptiveIntegrator, AdaptiveRun, DPRKN12_ADAPTIVE, DPRKN12_COMPENSATED,
@@ -263,17 +264,6 @@ fn at_end<S: Scene<D>, const D: usize>(
     Some(scene.phase_distance(end, reference)).filter(|e| e.is_finite())
 }
 
-/// The phase-space size of rounding each coordinate of `s` once, by half
-/// an ulp: the error of an exact solution the scene computes in
-/// double-double and rounds to doubles (as the core's Kepler orbits do).
-fn rounding<S: Scene<D>, const D: usize>(scene: &S, s: &State<D>) -> f64 {
-    let half_ulp = |x: f64| 0.5 * (x.abs().next_up() - x.abs());
-    let w = scene.frequency();
-    let q: f64 = s.q.iter().map(|&x| half_ulp(x).powi(2)).sum();
-    let v: f64 = s.v.iter().map(|&x| (half_ulp(x) / w).powi(2)).sum();
-    (q + v).sqrt()
-}
-
 /// The race on every scene, Kepler orbits first; an error when a
 /// reference cannot be read.
 pub fn race() -> Result<Vec<SceneRace>, String> {
@@ -295,14 +285,14 @@ pub fn race() -> Result<Vec<SceneRace>, String> {
             &circular,
             circular_end,
             "the exact solution, rounded to doubles".to_string(),
-            rounding(&circular, &exact_circular),
+            rounding_distance(&circular, &exact_circular),
             |run| at_end(&circular, run, &exact_circular),
         ),
         race_on(
             &eccentric,
             eccentric_end,
             "the exact solution, rounded to doubles".to_string(),
-            rounding(&eccentric, &exact_eccentric),
+            rounding_distance(&eccentric, &exact_eccentric),
             |run| at_end(&eccentric, run, &exact_eccentric),
         ),
         race_on(

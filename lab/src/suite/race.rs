@@ -30,6 +30,7 @@ use stepladder::internals::cost::step_time::time_run;
 use stepladder::internals::cost::work_points::{Reach, cheapest, cost_to_reach};
 use stepladder::internals::parallel::parallel_map;
 use stepladder::internals::run::integrate;
+use stepladder::internals::tolerance::rounding_distance;
 use stepladder::scene::{
     AnyScene, Counted, KeplerEccentric, OuterSolarSystem, Pleiades, Scene, SceneVisitor,
 };
@@ -623,14 +624,10 @@ pub fn exact_rounding(scene: &str) -> Option<f64> {
             self,
             scene: &S,
         ) -> Option<f64> {
-            let half_ulp = |x: f64| 0.5 * (x.abs().next_up() - x.abs());
-            let w = scene.frequency();
             let mut worst = 0.0f64;
             for k in 0..4096 {
                 let s = scene.exact(scene.period() * k as f64 / 4096.0)?;
-                let q: f64 = s.q.iter().map(|&x| half_ulp(x).powi(2)).sum();
-                let v: f64 = s.v.iter().map(|&x| (half_ulp(x) / w).powi(2)).sum();
-                worst = worst.max((q + v).sqrt());
+                worst = worst.max(rounding_distance(scene, &s));
             }
             Some(worst)
         }
