@@ -309,7 +309,12 @@ mod tests {
         let s2 = x.iter().map(|v| (v - xbar).powi(2)).sum::<f64>() / (n - 1.0);
         let left_out: Vec<f64> = x.iter().map(|v| (sum - v) / (n - 1.0)).collect();
         let se = jackknife_standard_error(&left_out);
-        // a few roundings of order-one numbers
+        // each leave-one-out mean carries about three roundings of numbers
+        // up to 3.5 (1e-15 absolute); against deviations |m_i - mean(m)|
+        // that sum to 2.56 (squares to 1.78) that is about 1.4e-15 relative in
+        // the standard error, and as much in the reference s / sqrt(n):
+        // 3e-15 in all, so 1e-14 is three times the bound, and the
+        // `(k + 1)` slip in the formula moves the ratio by 15%
         assert!((se / (s2 / n).sqrt() - 1.0).abs() < 1e-14, "{se}");
     }
 
