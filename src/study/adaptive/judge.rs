@@ -51,19 +51,15 @@ fn pre_asymptotic_method(claims: &AdaptiveClaims, f: &Proportionality) -> Option
 /// rho` with the steps' law nearer the claimed `-1/m` than either
 /// neighbour's, the method's fixed-step order reaching `p`, and `rho` wholly
 /// above 0. The halfway points are where a measured `s` stops being nearer
-/// `-1/m` than `-1/(m - 1)` (below) or `-1/(m + 1)` (above); for `m = 1` no
-/// lower neighbour exists.
+/// `-1/m` than `-1/(m - 1)` (below) or `-1/(m + 1)` (above).
 fn settling_controller(claims: &AdaptiveClaims, f: &Proportionality) -> Option<String> {
     let theory = f.theory?;
     let method = f.method_order.as_ref()?;
     let steps = f.step_scaling.as_ref()?;
     let ratio = f.error_ratio.as_ref()?;
     let m = f64::from(f.estimate_power.max(1));
-    let lower = if m > 1.0 {
-        -0.5 * (1.0 / m + 1.0 / (m - 1.0))
-    } else {
-        f64::NEG_INFINITY
-    };
+    // for m = 1, 1 / (m - 1) is +inf and the lower bound -inf
+    let lower = -0.5 * (1.0 / m + 1.0 / (m - 1.0));
     let upper = -0.5 * (1.0 / m + 1.0 / (m + 1.0));
     let faster = f.ci95[0] > theory;
     let controller = lower < steps.ci95[0] && steps.ci95[1] < upper;
