@@ -456,6 +456,13 @@ mod tests {
         assert!(settling_with(1, [-0.19, -0.18]).is_none());
         assert!(settling_with(1, [-0.26, -0.24]).is_none());
         assert!(settling_with(1, [-0.224, -0.19]).is_some());
+        // an interval reaching a halfway point is as near the neighbour
+        let halfway = [
+            -0.5 * (1.0 / 5.0 + 1.0 / 4.0),
+            -0.5 * (1.0 / 5.0 + 1.0 / 6.0),
+        ];
+        assert!(settling_with(1, [halfway[0], -0.19]).is_none());
+        assert!(settling_with(1, [-0.21, halfway[1]]).is_none());
         // a method below its order
         assert!(settling_with(2, [5.5, 5.9]).is_none());
         assert!(settling_with(2, [5.5, 6.0]).is_some());

@@ -741,19 +741,25 @@ mod tests {
         assert!(r.proportionality.unwrap().exponent > 2.0);
     }
 
+    /// DPRKN6(4) whose controller assumes another power of `h`: its claims
+    /// follow the controller, its steps still follow the `h^5` estimate.
+    fn dprkn6_with_controller_exponent(exponent: f64) -> EmbeddedPair<6> {
+        EmbeddedPair {
+            name: "DPRKN6(4), another controller exponent",
+            controller: Controller {
+                exponent,
+                ..DPRKN6_ADAPTIVE.controller
+            },
+            ..DPRKN6_ADAPTIVE
+        }
+    }
+
     /// A controller tuned for `h^6` (`1/p`) still settles where its `h^5`
     /// estimate is a fixed fraction of the tolerance, so the error follows
     /// `TOL^(6/5)`, not the `TOL^1` such a controller implies.
     #[test]
     fn a_controller_with_the_wrong_exponent_is_refuted() {
-        let broken = EmbeddedPair {
-            name: "controller exponent 1/p",
-            controller: Controller {
-                exponent: 1.0 / 6.0,
-                ..DPRKN6_ADAPTIVE.controller
-            },
-            ..DPRKN6_ADAPTIVE
-        };
+        let broken = dprkn6_with_controller_exponent(1.0 / 6.0);
         assert_eq!(broken.claims().proportionality, Some(1.0));
         let r = tolerance_ladder(&broken, &KeplerEccentric::default(), &spec()).unwrap();
         println!("{}", r.reason);
@@ -779,14 +785,7 @@ mod tests {
             assert!(ratio.ci95[0] > 0.0, "{ratio:?}");
             assert_eq!(r.verdict, Verdict::Inconclusive, "{}", r.reason);
         }
-        let sixth = EmbeddedPair {
-            name: "controller exponent 1/6",
-            controller: Controller {
-                exponent: 1.0 / 6.0,
-                ..DPRKN6_ADAPTIVE.controller
-            },
-            ..DPRKN6_ADAPTIVE
-        };
+        let sixth = dprkn6_with_controller_exponent(1.0 / 6.0);
         let r = tolerance_ladder(&sixth, &scene, &spec()).unwrap();
         println!("{}", r.reason);
         let p = r.proportionality.expect("an exponent");
