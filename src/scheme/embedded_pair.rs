@@ -401,6 +401,35 @@ mod tests {
         assert_eq!(c.ratio(1e10, 1.0), c.max_shrink);
     }
 
+    /// The first trial on the circular orbit, `y0 = (1, 0, 0, 2 pi)`, `f0 =
+    /// (0, 2 pi, -4 pi^2, 0)`, weights `1 / (TOL (1 + |y0_i|))`: the ratio of
+    /// the RMS norms is `sqrt(1/4 + (2 pi / (1 + 2 pi))^2) / sqrt(4 pi^2 +
+    /// 16 pi^4)`, 0.0249 of a year, whatever the tolerance; no longer than
+    /// the run; `1e-4` where the state or its rate is too small to measure.
+    #[test]
+    fn the_first_trial_is_the_states_size_over_its_rate() {
+        let scene = KeplerCircular;
+        let y0 = scene.initial();
+        let a0 = scene.acceleration(&y0.q);
+        let pi = std::f64::consts::PI;
+        let w = 2.0 * pi / (1.0 + 2.0 * pi);
+        let expected = (0.25 + w * w).sqrt() / (4.0 * pi * pi + 16.0 * pi.powi(4)).sqrt();
+        for tol in [1e-6, 1e-14] {
+            let trial = DPRKN6_ADAPTIVE.first_trial(&y0, &a0, tol, 10.0);
+            assert!((trial / expected - 1.0).abs() < 1e-12, "{trial} {expected}");
+        }
+        assert_eq!(DPRKN6_ADAPTIVE.first_trial(&y0, &a0, 1e-10, 0.01), 0.01);
+        let rest = State::new(nalgebra::SVector::zeros(), nalgebra::SVector::zeros());
+        let zero = nalgebra::SVector::<f64, 2>::zeros();
+        assert_eq!(DPRKN6_ADAPTIVE.first_trial(&rest, &zero, 1e-10, 10.0), 1e-4);
+        // at rest away from the origin with no force: no rate to measure
+        let still = State::new(nalgebra::SVector::from([1.0, 0.0]), zero);
+        assert_eq!(
+            DPRKN6_ADAPTIVE.first_trial(&still, &zero, 1e-10, 10.0),
+            1e-4
+        );
+    }
+
     /// On the circular orbit the first trial is the state's size over its
     /// rate in the scaled norm, `0.025` of a year, and DPRKN6(4) at tolerance
     /// `1e-14` steps `t_end / 3189 = 8.9e-4`, 28 times shorter: the trial's
