@@ -38,7 +38,13 @@ fn method() -> String {
          `TOL` (the controller's half of the claim, `N ~ TOL^(-1/m)`) and its method is run \
          at fixed steps over the same step counts (the method's half): a method still above \
          its asymptotic order at those steps, with the exponent that order predicts, leaves \
-         the verdict undecided; anything else fails it. DOP853's \
+         the verdict undecided. So does a controller still settling: the exponent is exactly \
+         `-p_fix s + rho`, with `s` the steps' law, `p_fix` the method's order at those \
+         steps and `rho` the slope of the error over the equal-step error at the same count, \
+         which is 0 once the distribution of steps over the run stops changing; an error \
+         falling faster than claimed, with `s` nearer `-1/m` than either neighbour's law, \
+         `p_fix` reaching `p` and `rho` wholly above 0, is undecided. Anything else fails \
+         it. DOP853's \
          estimate `h err5^2 / sqrt(err5^2 + 0.01 err3^2)` behaves like `h^6` while its \
          fifth-order part dominates and like `h^8` once the third-order one does, so its \
          exponent moves from 4/3 towards 1 along the ladder and is measured, not judged. \

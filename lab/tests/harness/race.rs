@@ -329,8 +329,9 @@ fn the_exact_kepler_solutions_judge_down_to_their_rounding() {
     }
 }
 
-/// The eccentric orbit's unreached smallest target, explained: the worst
-/// error of the compensated twelfth-order pair is a lag along the orbit (a
+/// The eccentric orbit's smallest target is at the edge of doubles (the
+/// report explains it with these figures wherever no run reaches it): the
+/// worst error of the compensated twelfth-order pair is a lag along the orbit (a
 /// shift in time leaves under a tenth of it unexplained), found near
 /// pericentre, where the phase-space speed is `S_p = 2 pi ((1+e)/(1-e) +
 /// 1/(1-e)^4)^(1/2)` (a = 1, GM = 4 pi^2, w = 2 pi), and the energy the
