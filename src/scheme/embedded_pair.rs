@@ -422,6 +422,10 @@ mod tests {
         let rest = State::new(nalgebra::SVector::zeros(), nalgebra::SVector::zeros());
         let zero = nalgebra::SVector::<f64, 2>::zeros();
         assert_eq!(DPRKN6_ADAPTIVE.first_trial(&rest, &zero, 1e-10, 10.0), 1e-4);
+        // at rest at the origin but pushed: a rate and no size, whose
+        // quotient, zero, is no step
+        let push = nalgebra::SVector::from([1.0, 0.0]);
+        assert_eq!(DPRKN6_ADAPTIVE.first_trial(&rest, &push, 1e-10, 10.0), 1e-4);
         // at rest away from the origin with no force: no rate to measure
         let still = State::new(nalgebra::SVector::from([1.0, 0.0]), zero);
         assert_eq!(
