@@ -13,6 +13,7 @@ pub mod glue;
 pub mod methods;
 pub mod race;
 pub mod report;
+pub mod target_cost;
 
 use stepladder::internals::accuracy::order::{OrderSpec, global_order};
 use stepladder::internals::adaptive::{ToleranceLadderSpec, tolerance_ladder};

@@ -4,17 +4,21 @@
 //! separates them is the step control, the error norm, the arithmetic of
 //! the state updates and the cost of a step, not the method.
 //!
-//! Every contender runs the same tolerances, one a decade, loosest first,
-//! and is judged by the same error, the phase-space distance at the end
-//! time to the reference: on the Kepler orbits the exact solution (its
-//! rounding to doubles its error), on the Pleiades and the outer solar
-//! system the reference states of the repository's race. (That race takes
-//! the largest error over every accepted step on the Kepler orbits; a
-//! black box shows only its end, so here all three are judged there.)
-//! The evaluations to reach a target are interpolated on log-log axes
-//! between the two runs that bracket it (stepladder's `cost_to_reach`, as
-//! the repository's race does), the seconds the same way from the fastest
-//! of [`REPEATS`] runs of each tolerance.
+//! Every contender runs the same tolerances, [`PER_DECADE`] a decade,
+//! loosest first, and is judged by the same error, the phase-space distance
+//! at the end time to the reference: on the Kepler orbits the exact
+//! solution (its rounding to doubles its error), on the Pleiades and the
+//! outer solar system the reference states of the repository's race. (That
+//! race takes the largest error over every accepted step on the Kepler
+//! orbits; a black box shows only its end, so here all three are judged
+//! there.) The evaluations to reach a target are estimated with their
+//! intervals from the runs near it ([`crate::target_cost`]), the seconds
+//! are those evaluations at the contender's median seconds per evaluation
+//! (each run timed the fastest of [`REPEATS`]): three implementations of
+//! one tableau differ by a few percent, less than two bracketing runs'
+//! interpolation (the repository's race's `cost_to_reach`) can tell apart.
+//! How far that interpolation moves with the grid's offset is measured here
+//! too ([`Contender::decade_spread`]).
 //!
 //! The N-body references are the repository's race's, read from
 //! `lab/references/` (written by `stepladder reference`; a harness test
@@ -22,7 +26,8 @@
 //! building the lab: the Pleiades' published state, and for the outer
 //! solar system a double-double integration certified to `5e-17`.
 
-use stepladder::internals::cost::work_points::{Reach, cost_to_reach};
+use crate::target_cost::{self, Reach, Run, WINDOW_DECADES};
+use stepladder::internals::cost::work_points::cost_to_reach;
 use stepladder::internals::tolerance::rounding_distance;
 use stepladder::scene::{KeplerCircular, KeplerEccentric, OuterSolarSystem, Pleiades, Scene};
 use stepladder::scheme::{
@@ -31,18 +36,32 @@ use stepladder::scheme::{
 };
 use stepladder::state::State;
 
-/// The tolerances each contender runs, one a decade, each the literal
-/// nearest its decade; below `1e-16` a tolerance is under a unit of
-/// round-off of the states' order-one components.
-const TOLERANCES: [f64; 14] = [
-    1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15, 1e-16,
-];
+/// Tolerances a decade. A pair whose steps scale like `TOL^(-1/(q+1))`
+/// (`q + 1 = 11` for RKN12(10)) takes one step more when the tolerance falls
+/// by `(1 + 1/N)^(q+1)`, about `e^(11/N)`: an eighth of a decade at `N = 40`
+/// steps, a third at `N = 10`. Eight a decade thus meets about every step
+/// count at the tightest targets; a finer grid repeats step sequences
+/// already run, a coarser one skips some.
+pub const PER_DECADE: u32 = 8;
+
+/// The loosest and the tightest tolerance, in decades: below `1e-16` a
+/// tolerance is under a unit of round-off of the states' order-one
+/// components.
+const DECADES: (u32, u32) = (3, 16);
+
+/// The `k`-th tolerance, `10^(-3 - k / PER_DECADE)`.
+fn tolerance(k: u32) -> f64 {
+    10f64.powf(-(DECADES.0 as f64) - k as f64 / PER_DECADE as f64)
+}
 
 /// The target errors, those of the repository's race.
 pub const TARGETS: [f64; 4] = [1e-6, 1e-9, 1e-12, 1e-14];
 
-/// Runs timed per tolerance; the fastest counts (the machine is shared).
-pub const REPEATS: usize = 5;
+/// Rounds timed per tolerance; each contender's fastest counts (the machine
+/// is shared). A run of the outer solar system takes some 100 us, so a
+/// slice of the scheduler or a cache refill is a large share of one run
+/// and none of the fastest of nine.
+pub const REPEATS: usize = 9;
 
 /// A target is judged when the reference's own error is at most this share
 /// of it: the measured error is then the true one to within 10%, which
@@ -132,24 +151,83 @@ pub struct RacePoint {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Contender {
     pub name: &'static str,
+    /// The order the contender claims, by which its runs predict a
+    /// target's cost.
+    pub order: f64,
     pub points: Vec<RacePoint>,
 }
 
 impl Contender {
-    fn reach(&self, cost: impl Fn(&RacePoint) -> f64, target: f64) -> Reach {
-        let data: Vec<(f64, Option<f64>)> =
-            self.points.iter().map(|p| (cost(p), p.error)).collect();
-        cost_to_reach(&data, target)
+    fn runs(&self, cost: impl Fn(&RacePoint) -> f64) -> Vec<Run> {
+        self.points
+            .iter()
+            .filter_map(|p| {
+                p.error.map(|error| Run {
+                    cost: cost(p),
+                    evaluations: p.evaluations,
+                    error,
+                })
+            })
+            .collect()
     }
 
     /// Force evaluations to reach `target`.
     pub fn evaluations(&self, target: f64) -> Reach {
-        self.reach(|p| p.evaluations as f64, target)
+        let runs = self.runs(|p| p.evaluations as f64);
+        target_cost::target_cost(&runs, target, self.order)
     }
 
-    /// Seconds to reach `target`.
+    /// Seconds to reach `target`: its evaluations times the contender's
+    /// seconds per evaluation. A step's cost per evaluation does not depend
+    /// on the tolerance (the same stages, the same force, the same
+    /// controller), but the machine's slow stretches last longer than one
+    /// tolerance's rounds and inflate whole runs of consecutive tolerances,
+    /// in or out of a target's window by chance: estimated from the runs'
+    /// seconds directly, brahe over stepladder at 1e-6 on the outer solar
+    /// system came out 0.93 where the evaluations say 1.27 and both spend
+    /// the same per evaluation. The median over all of a contender's runs
+    /// votes those stretches out.
     pub fn seconds(&self, target: f64) -> Reach {
-        self.reach(|p| p.seconds, target)
+        self.evaluations(target)
+            .scaled(self.seconds_per_evaluation())
+    }
+
+    /// The median over the contender's runs of seconds per evaluation.
+    pub fn seconds_per_evaluation(&self) -> f64 {
+        let mut per: Vec<f64> = self
+            .points
+            .iter()
+            .map(|p| p.seconds / p.evaluations.max(1) as f64)
+            .collect();
+        per.sort_by(f64::total_cmp);
+        match per.len() {
+            0 => f64::NAN,
+            n if n % 2 == 1 => per[n / 2],
+            n => 0.5 * (per[n / 2 - 1] + per[n / 2]),
+        }
+    }
+
+    /// The largest over the smallest evaluations to reach `target` when they
+    /// are interpolated between the two runs that bracket it on a grid of
+    /// one tolerance a decade, over the grid's [`PER_DECADE`] offsets;
+    /// `None` unless every offset reaches it.
+    pub fn decade_spread(&self, target: f64) -> Option<f64> {
+        let costs: Option<Vec<f64>> = (0..PER_DECADE as usize)
+            .map(|offset| {
+                let data: Vec<(f64, Option<f64>)> = self
+                    .points
+                    .iter()
+                    .skip(offset)
+                    .step_by(PER_DECADE as usize)
+                    .map(|p| (p.evaluations as f64, p.error))
+                    .collect();
+                cost_to_reach(&data, target).cost()
+            })
+            .collect();
+        let costs = costs?;
+        let lo = costs.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = costs.iter().copied().fold(0.0, f64::max);
+        Some(hi / lo)
     }
 }
 
@@ -183,48 +261,97 @@ fn brahe() -> AdaptiveBlackBox<stepladder::scheme::AdvanceFn> {
     )
 }
 
-/// The ladder of one contender: every tolerance until a run's error is at
-/// most the smallest target the reference judges, or a run fails to reach
-/// the end. Tighter runs cannot change any cost: a target's cost comes from
-/// the first run at or below it and the one before (`cost_to_reach`).
-fn ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
-    integrator: &I,
-    scene: &S,
-    t_end: f64,
+/// One contender as the ladders run it: its name, its claimed order and a
+/// run at a tolerance.
+struct Runner<'a, const D: usize> {
+    name: &'static str,
+    order: f64,
+    run: Box<dyn Fn(f64) -> Option<AdaptiveRun<D>> + 'a>,
+}
+
+impl<'a, const D: usize> Runner<'a, D> {
+    fn new<I: AdaptiveIntegrator, S: Scene<D>>(
+        integrator: &'a I,
+        scene: &'a S,
+        t_end: f64,
+    ) -> Self {
+        Runner {
+            name: integrator.name(),
+            order: integrator.claims().order as f64,
+            run: Box::new(move |tol| integrator.run(scene, t_end, tol).ok()),
+        }
+    }
+}
+
+/// The ladders of every contender, run together: at each tolerance the
+/// contenders take turns, [`REPEATS`] rounds, so that whatever else the
+/// machine does at that moment slows them alike (with one contender's
+/// whole ladder run after another's, brahe's time over stepladder's at
+/// 1e-9 on the outer solar system was 1.07 in one run of the audit and 1.37
+/// in the next). A contender's ladder ends at the first
+/// run whose error is [`WINDOW_DECADES`] below the smallest target the
+/// reference judges (so that runs on both sides of it predict its cost), or
+/// that fails to reach the end.
+fn ladders<const D: usize>(
+    runners: &[Runner<'_, D>],
     smallest: f64,
     error: &impl Fn(&AdaptiveRun<D>) -> Option<f64>,
-) -> Contender {
-    let mut points = Vec::new();
-    for tol in TOLERANCES {
-        let mut fastest: Option<(AdaptiveRun<D>, f64)> = None;
+) -> Vec<Contender> {
+    let mut contenders: Vec<Contender> = runners
+        .iter()
+        .map(|r| Contender {
+            name: r.name,
+            order: r.order,
+            points: Vec::new(),
+        })
+        .collect();
+    let mut running = vec![true; runners.len()];
+    let last = (DECADES.1 - DECADES.0) * PER_DECADE;
+    for tol in (0..=last).map(tolerance) {
+        let mut fastest: Vec<Option<(AdaptiveRun<D>, f64)>> =
+            runners.iter().map(|_| None).collect();
         for _ in 0..REPEATS {
-            let Ok(run) = integrator.run(scene, t_end, tol) else {
-                break;
-            };
-            let seconds = run.time.as_secs_f64();
-            if fastest.as_ref().is_none_or(|(_, s)| seconds < *s) {
-                fastest = Some((run, seconds));
+            for (i, runner) in runners.iter().enumerate() {
+                if !running[i] {
+                    continue;
+                }
+                let Some(run) = (runner.run)(tol) else {
+                    running[i] = false;
+                    continue;
+                };
+                let seconds = run.time.as_secs_f64();
+                if fastest[i].as_ref().is_none_or(|(_, s)| seconds < *s) {
+                    fastest[i] = Some((run, seconds));
+                }
             }
         }
-        let Some((run, seconds)) = fastest else { break };
-        let reached = run.end == RunEnd::Reached;
-        let point = RacePoint {
-            tolerance: tol,
-            evaluations: run.evaluations,
-            accepted: run.accepted,
-            rejected: run.rejected,
-            seconds,
-            error: if reached { error(&run) } else { None },
-        };
-        points.push(point);
-        if point.error.is_none_or(|e| e <= smallest) {
+        for (i, best) in fastest.into_iter().enumerate() {
+            let Some((run, seconds)) = best else {
+                running[i] = false;
+                continue;
+            };
+            let reached = run.end == RunEnd::Reached;
+            let point = RacePoint {
+                tolerance: tol,
+                evaluations: run.evaluations,
+                accepted: run.accepted,
+                rejected: run.rejected,
+                seconds,
+                error: if reached { error(&run) } else { None },
+            };
+            contenders[i].points.push(point);
+            if point
+                .error
+                .is_none_or(|e| e <= smallest * 10f64.powf(-WINDOW_DECADES))
+            {
+                running[i] = false;
+            }
+        }
+        if !running.iter().any(|&r| r) {
             break;
         }
     }
-    Contender {
-        name: integrator.name(),
-        points,
-    }
+    contenders
 }
 
 fn race_on<S: Scene<D>, const D: usize>(
@@ -246,11 +373,13 @@ fn race_on<S: Scene<D>, const D: usize>(
         .copied()
         .filter(|&t| race.judges(t))
         .fold(TARGETS[0], f64::min);
-    race.contenders = vec![
-        ladder(&brahe(), scene, t_end, smallest, &error),
-        ladder(&DPRKN12_ADAPTIVE, scene, t_end, smallest, &error),
-        ladder(&DPRKN12_COMPENSATED, scene, t_end, smallest, &error),
+    let brahe = brahe();
+    let runners = [
+        Runner::new(&brahe, scene, t_end),
+        Runner::new(&DPRKN12_ADAPTIVE, scene, t_end),
+        Runner::new(&DPRKN12_COMPENSATED, scene, t_end),
     ];
+    race.contenders = ladders(&runners, smallest, &error);
     race
 }
 

@@ -3,9 +3,9 @@
 //! defects autonomous scenes cannot show, and where each claim was read.
 
 use crate::race::{Contender, SceneRace, TARGETS};
+use crate::target_cost::{self, Reach};
 use crate::{Audit, FIXED_PROPS, Prop, Provenance, disagreements};
 use std::fmt::Write;
-use stepladder::internals::cost::work_points::Reach;
 use stepladder::study::Verdict;
 
 /// Defects the audit's autonomous scenes cannot see, with the independent
@@ -503,48 +503,107 @@ pub fn audit_md(audits: &[Audit], races: &[SceneRace], seconds: f64, fingerprint
     s
 }
 
-fn reach(r: Reach, digits: usize) -> String {
+/// A cost with its interval or bracket.
+fn reach(r: Reach) -> String {
     match r {
-        Reach::Interpolated(c) => format!("{c:.digits$e}"),
-        Reach::AtMost(c) => format!("at most {c:.digits$e}"),
+        Reach::Estimated(c) => {
+            let [lo, hi] = c.interval();
+            format!("{:.2e} [{lo:.2e}, {hi:.2e}]", c.cost)
+        }
+        Reach::Bracketed { least, most } if least == most => {
+            format!("{most:.2e} (its cheapest run)")
+        }
+        Reach::Bracketed { least, most } => format!("{least:.2e} to {most:.2e} (runs)"),
         Reach::NotReached => "not reached".to_string(),
     }
 }
 
-/// brahe's cost over the cheapest of stepladder's pairs at one target, by
-/// `cost`; `None` unless every contender reached it.
-fn ratio(race: &SceneRace, cost: impl Fn(&Contender) -> Reach) -> Option<f64> {
-    let brahe = cost(&race.contenders[0]).cost()?;
-    let own = race.contenders[1..]
-        .iter()
-        .map(|c| cost(c).cost())
-        .collect::<Option<Vec<f64>>>()?
-        .into_iter()
-        .fold(f64::INFINITY, f64::min);
-    Some(brahe / own)
+/// Who is cheaper at one target: brahe's cost over the cheaper of
+/// stepladder's pairs and its interval.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Standing {
+    ratio: f64,
+    interval: [f64; 2],
 }
 
-/// Per scene, who is cheaper at the judged targets both sides reach, by
-/// evaluations and by time (the range of brahe's cost over stepladder's
-/// cheaper pair), and the targets only one side reaches.
+impl Standing {
+    /// `Some(true)` when stepladder is cheaper beyond the scatter,
+    /// `Some(false)` when brahe is, `None` when the interval holds 1.
+    fn resolved(&self) -> Option<bool> {
+        let [lo, hi] = self.interval;
+        if lo > 1.0 {
+            Some(true)
+        } else if hi < 1.0 {
+            Some(false)
+        } else {
+            None
+        }
+    }
+
+    fn figure(&self) -> String {
+        let [lo, hi] = self.interval;
+        format!("{:.2} [{lo:.2}, {hi:.2}]", self.ratio)
+    }
+
+    fn cell(&self) -> String {
+        let outcome = match self.resolved() {
+            Some(true) => "stepladder cheaper",
+            Some(false) => "brahe cheaper",
+            None => "not resolved",
+        };
+        format!("{}: {outcome}", self.figure())
+    }
+}
+
+/// brahe's standing at one target by `cost`; `None` unless brahe and one of
+/// stepladder's pairs reach it.
+fn standing(race: &SceneRace, cost: impl Fn(&Contender) -> Reach) -> Option<Standing> {
+    let brahe = cost(&race.contenders[0]);
+    let own = race.contenders[1..]
+        .iter()
+        .map(&cost)
+        .filter(|r| r.cost().is_some())
+        .min_by(|a, b| a.cost().partial_cmp(&b.cost()).expect("finite costs"))?;
+    let (ratio, interval) = target_cost::ratio(&brahe, &own)?;
+    Some(Standing { ratio, interval })
+}
+
+/// Per scene, at the judged targets both sides reach, where stepladder and
+/// where brahe is cheaper beyond the scatter and where neither is, by
+/// evaluations and by time, and the targets only one side reaches.
 fn race_summary(races: &[SceneRace]) -> String {
     let mut s = String::from(
-        "\nIn short (brahe's cost over the cheaper of stepladder's pairs, at the judged targets both reach):\n\n",
+        "\nIn short (brahe's cost over the cheaper of stepladder's pairs and its 95% interval, at the judged \
+         targets both reach):\n\n",
     );
     for race in races {
         let judged: Vec<f64> = TARGETS.into_iter().filter(|&t| race.judges(t)).collect();
-        let range = |cost: &dyn Fn(&Contender, f64) -> Reach| {
-            let ratios: Vec<f64> = judged
+        let verdicts = |cost: &dyn Fn(&Contender, f64) -> Reach| {
+            let mut groups: [(&str, Vec<String>); 3] = [
+                ("stepladder cheaper at", Vec::new()),
+                ("brahe cheaper at", Vec::new()),
+                ("not resolved at", Vec::new()),
+            ];
+            for &t in &judged {
+                let Some(st) = standing(race, |c| cost(c, t)) else {
+                    continue;
+                };
+                let slot = match st.resolved() {
+                    Some(true) => 0,
+                    Some(false) => 1,
+                    None => 2,
+                };
+                groups[slot].1.push(format!("{t:.0e} ({})", st.figure()));
+            }
+            let parts: Vec<String> = groups
                 .iter()
-                .filter_map(|&t| ratio(race, |c| cost(c, t)))
+                .filter(|(_, v)| !v.is_empty())
+                .map(|(what, v)| format!("{what} {}", v.join(", ")))
                 .collect();
-            let lo = ratios.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            match ratios.len() {
-                0 => "no target both reach".to_string(),
-                _ if hi < 1.0 => format!("brahe cheaper at every one ({lo:.2} to {hi:.2})"),
-                _ if lo > 1.0 => format!("stepladder cheaper at every one ({lo:.2} to {hi:.2})"),
-                _ => format!("neither at every one ({lo:.2} to {hi:.2})"),
+            if parts.is_empty() {
+                "no target both reach".to_string()
+            } else {
+                parts.join("; ")
             }
         };
         // the judged targets one side reaches and the other does not
@@ -573,8 +632,8 @@ fn race_summary(races: &[SceneRace]) -> String {
             s,
             "- `{}`: by evaluations {}; by time {}{}{}.",
             race.scene,
-            range(&|c, t| c.evaluations(t)),
-            range(&|c, t| c.seconds(t)),
+            verdicts(&|c, t| c.evaluations(t)),
+            verdicts(&|c, t| c.seconds(t)),
             only("brahe", true),
             only("stepladder", false),
         );
@@ -585,12 +644,43 @@ fn race_summary(races: &[SceneRace]) -> String {
          where stepladder takes the root mean square of the same ratios; brahe grows an accepted step by\n\
          `0.9 err^(-1/12)` within 0.2 to 10 times and at most 900 time units (config.rs, `Default`), stepladder\n\
          by `0.9 err^(-1/11)` within 0.2 to 5 times; brahe's first attempt is the step its caller passes\n\
-         (here the whole interval, cut to no less than a fifth a rejection), stepladder's first step\n\
-         is Hairer's starting estimate, grown at most fivefold a step; stepladder's compensated pair adds\n\
-         each increment with its rounding carried. Which of these makes the differences in the tables is\n\
-         not measured here.\n",
+         (here the whole interval, cut to no less than a fifth a rejection), stepladder's first trial is the\n\
+         state's size over its rate in the same scaled norm, `||y0|| / ||f(y0)||`, a rejected one retried\n\
+         where its estimate points; stepladder's compensated pair adds each increment with its rounding\n\
+         carried. Which of these makes the differences in the tables is not measured here.\n",
     );
     s
+}
+
+/// The spread of a decade grid's interpolated evaluations over the grid's
+/// offsets, at every judged target that every offset reaches: the median
+/// and the largest, in percent, and how many.
+fn decade_spreads(races: &[SceneRace]) -> Option<(f64, f64, usize)> {
+    let mut spreads: Vec<f64> = races
+        .iter()
+        .flat_map(|race| {
+            TARGETS
+                .into_iter()
+                .filter(|&t| race.judges(t))
+                .flat_map(move |t| {
+                    race.contenders
+                        .iter()
+                        .filter_map(move |c| c.decade_spread(t))
+                })
+        })
+        .map(|r| 100.0 * (r - 1.0))
+        .collect();
+    if spreads.is_empty() {
+        return None;
+    }
+    spreads.sort_by(f64::total_cmp);
+    let n = spreads.len();
+    let median = if n % 2 == 1 {
+        spreads[n / 2]
+    } else {
+        0.5 * (spreads[n / 2 - 1] + spreads[n / 2])
+    };
+    Some((median, spreads[n - 1], n))
 }
 
 /// The race of brahe's RKN12(10) against stepladder's own (`crate::race`).
@@ -600,21 +690,43 @@ pub fn race_section(races: &[SceneRace]) -> String {
         .first()
         .map(|r| r.contenders.iter().map(|c| c.name).collect())
         .unwrap_or_default();
+    let spread = decade_spreads(races).map_or(String::new(), |(median, largest, n)| {
+        format!(
+            "Why not interpolate between the two runs that bracket a target, as the repository's race does:\n\
+             on a grid of one tolerance a decade that is too coarse here. Over the {per} offsets of such a grid\n\
+             within this one, the interpolated evaluations at a judged target move by {median:.0}% (median of\n\
+             {n}) and up to {largest:.0}%, more than most of the differences below.\n",
+            per = crate::race::PER_DECADE,
+        )
+    });
     let _ = writeln!(
         s,
         "\n## The race at the highest accuracy: brahe's RKN12(10) against stepladder's\n\n\
          brahe's RKN1210SIntegrator, stepladder's DPRKN12(10) pair and the same pair with compensated state\n\
          updates advance with one published tableau (Dormand, El-Mikkawy and Prince 1987); what separates\n\
          them is the step control, the error norm, the arithmetic of the updates and the cost of a step.\n\
-         Each runs the tolerances 1e-3, 1e-4, ... (relative and absolute alike) until its error is a tenth of\n\
-         the smallest target judged; its error is the phase-space distance at the end time to the reference,\n\
-         and the force evaluations (counted on the callback) and seconds (the fastest of {repeats} runs, on a\n\
-         machine shared with other work) to reach a target are interpolated on log-log axes between the two\n\
-         runs that bracket it. A target is judged where the reference's own error is at most a tenth of it.\n\
-         \"brahe / best\" divides brahe's cost by the cheaper of stepladder's two pairs: above 1 stepladder's\n\
-         pair is cheaper. The references are the repository's race's (`lab/references/`). Reproduce with\n\
-         `cargo run --release` in `audit/`.\n",
-        repeats = crate::race::REPEATS
+         Each runs the tolerances 1e-3 down to 1e-16, {per} a decade (relative and absolute alike), until\n\
+         its error is a decade below the smallest target judged; its error is the phase-space distance at\n\
+         the end time to the reference, its evaluations are counted on the callback, and each run is timed\n\
+         the fastest of {repeats} rounds in which the three take turns (on a machine shared with other work).\n\
+         A target is judged where the reference's own error is at most a tenth of it. The references are\n\
+         the repository's race's (`lab/references/`). Reproduce with `cargo run --release` in `audit/`.\n\n\
+         Every run whose error lies within a decade of a target predicts the evaluations to reach it by the\n\
+         method's order, `evaluations (error / target)^(1/12)`; with one prediction per distinct evaluation\n\
+         count (the mean of its runs': neighbouring tolerances that take as many steps place them almost\n\
+         alike), their mean on log axes is the estimate and their scatter its 95% interval (Student's t).\n\
+         With fewer than three counts near a target, the runs bracket its cost instead: at least the\n\
+         cheapest run of any tolerance, at most the cheapest that reaches it. The seconds to a target are\n\
+         its evaluations at the contender's median seconds per evaluation over all its runs (a step's cost\n\
+         per evaluation does not depend on the tolerance, and the median votes out the stretches in which\n\
+         the shared machine ran slow, which otherwise fall in or out of a target's window by chance); their\n\
+         interval is the evaluations', and leaves out how reproducible that median is from one build or run\n\
+         of the audit to the next. \"brahe / best\" divides brahe's cost by the cheaper of stepladder's two\n\
+         pairs, with its 95% interval (Welch's, or the quotient of a bracket and an interval): above 1\n\
+         stepladder's pair is cheaper, and a side is called cheaper only where the interval excludes 1.\n\n\
+         {spread}",
+        per = crate::race::PER_DECADE,
+        repeats = crate::race::REPEATS,
     );
     let _ = writeln!(
         s,
@@ -651,22 +763,22 @@ pub fn race_section(races: &[SceneRace]) -> String {
             let evaluations: Vec<String> = race
                 .contenders
                 .iter()
-                .map(|c| reach(c.evaluations(target), 2))
+                .map(|c| reach(c.evaluations(target)))
                 .collect();
             let seconds: Vec<String> = race
                 .contenders
                 .iter()
-                .map(|c| reach(c.seconds(target), 2))
+                .map(|c| reach(c.seconds(target)))
                 .collect();
-            let fmt = |r: Option<f64>| r.map_or("-".to_string(), |r| format!("{r:.2}"));
+            let cell = |st: Option<Standing>| st.map_or("-".to_string(), |st| st.cell());
             let _ = writeln!(
                 s,
                 "| `{}` | {target:.0e} | {} | {} | {} | {} |",
                 race.scene,
                 evaluations.join(" | "),
-                fmt(ratio(race, |c| c.evaluations(target))),
+                cell(standing(race, |c| c.evaluations(target))),
                 seconds.join(" | "),
-                fmt(ratio(race, |c| c.seconds(target))),
+                cell(standing(race, |c| c.seconds(target))),
             );
         }
     }
@@ -674,9 +786,9 @@ pub fn race_section(races: &[SceneRace]) -> String {
     let _ = writeln!(
         s,
         "\nThe runs of each contender (tolerance: force evaluations (accepted steps + rejected attempts),\n\
-         error at the end time; nanoseconds per
-         evaluation over the run, the whole step's cost divided by its evaluations):\n\n\
-         | scene | contender | runs | ns per evaluation, loosest to tightest |\n\
+         error at the end time), and the nanoseconds per evaluation over its runs (the whole step's cost\n\
+         divided by its evaluations; median and range):\n\n\
+         | scene | contender | runs | ns per evaluation |\n\
          | --- | --- | --- | --- |"
     );
     for race in races {
@@ -689,23 +801,28 @@ pub fn race_section(races: &[SceneRace]) -> String {
                         .error
                         .map_or("did not reach the end".to_string(), |e| format!("{e:.2e}"));
                     format!(
-                        "{:.0e}: {} ({} + {}), {e}",
+                        "{:.2e}: {} ({} + {}), {e}",
                         p.tolerance, p.evaluations, p.accepted, p.rejected
                     )
                 })
                 .collect();
-            let ns: Vec<String> = c
+            let mut ns: Vec<f64> = c
                 .points
                 .iter()
-                .map(|p| format!("{:.0}", 1e9 * p.seconds / p.evaluations.max(1) as f64))
+                .map(|p| 1e9 * p.seconds / p.evaluations.max(1) as f64)
                 .collect();
+            ns.sort_by(f64::total_cmp);
+            let ns = match (ns.first(), ns.get(ns.len() / 2), ns.last()) {
+                (Some(lo), Some(mid), Some(hi)) => format!("{mid:.0} ({lo:.0} to {hi:.0})"),
+                _ => "-".to_string(),
+            };
             let _ = writeln!(
                 s,
                 "| `{}` | {} | {} | {} |",
                 race.scene,
                 c.name,
                 runs.join("; "),
-                ns.join(", ")
+                ns
             );
         }
     }
