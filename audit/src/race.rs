@@ -192,19 +192,15 @@ impl Contender {
             .scaled(self.seconds_per_evaluation())
     }
 
-    /// The median over the contender's runs of seconds per evaluation.
+    /// The median over the contender's runs of seconds per evaluation
+    /// (`NaN` without runs).
     pub fn seconds_per_evaluation(&self) -> f64 {
-        let mut per: Vec<f64> = self
+        let per = self
             .points
             .iter()
             .map(|p| p.seconds / p.evaluations.max(1) as f64)
             .collect();
-        per.sort_by(f64::total_cmp);
-        match per.len() {
-            0 => f64::NAN,
-            n if n % 2 == 1 => per[n / 2],
-            n => 0.5 * (per[n / 2 - 1] + per[n / 2]),
-        }
+        target_cost::median(per).unwrap_or(f64::NAN)
     }
 
     /// The largest over the smallest evaluations to reach `target` when they

@@ -508,7 +508,7 @@ fn reach(r: Reach) -> String {
     match r {
         Reach::Estimated(c) => {
             let [lo, hi] = c.interval();
-            format!("{:.2e} [{lo:.2e}, {hi:.2e}]", c.cost)
+            format!("{:.2e} [{lo:.2e}, {hi:.2e}]", c.cost())
         }
         Reach::Bracketed { least, most } if least == most => {
             format!("{most:.2e} (its cheapest run)")
@@ -656,7 +656,7 @@ fn race_summary(races: &[SceneRace]) -> String {
 /// offsets, at every judged target that every offset reaches: the median
 /// and the largest, in percent, and how many.
 fn decade_spreads(races: &[SceneRace]) -> Option<(f64, f64, usize)> {
-    let mut spreads: Vec<f64> = races
+    let spreads: Vec<f64> = races
         .iter()
         .flat_map(|race| {
             TARGETS
@@ -670,17 +670,9 @@ fn decade_spreads(races: &[SceneRace]) -> Option<(f64, f64, usize)> {
         })
         .map(|r| 100.0 * (r - 1.0))
         .collect();
-    if spreads.is_empty() {
-        return None;
-    }
-    spreads.sort_by(f64::total_cmp);
+    let largest = spreads.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let n = spreads.len();
-    let median = if n % 2 == 1 {
-        spreads[n / 2]
-    } else {
-        0.5 * (spreads[n / 2 - 1] + spreads[n / 2])
-    };
-    Some((median, spreads[n - 1], n))
+    target_cost::median(spreads).map(|median| (median, largest, n))
 }
 
 /// The race of brahe's RKN12(10) against stepladder's own (`crate::race`).
@@ -806,15 +798,18 @@ pub fn race_section(races: &[SceneRace]) -> String {
                     )
                 })
                 .collect();
-            let mut ns: Vec<f64> = c
+            let ns: Vec<f64> = c
                 .points
                 .iter()
                 .map(|p| 1e9 * p.seconds / p.evaluations.max(1) as f64)
                 .collect();
-            ns.sort_by(f64::total_cmp);
-            let ns = match (ns.first(), ns.get(ns.len() / 2), ns.last()) {
-                (Some(lo), Some(mid), Some(hi)) => format!("{mid:.0} ({lo:.0} to {hi:.0})"),
-                _ => "-".to_string(),
+            let lo = ns.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = ns.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let ns = if ns.is_empty() {
+                "-".to_string()
+            } else {
+                let mid = 1e9 * c.seconds_per_evaluation();
+                format!("{mid:.0} ({lo:.0} to {hi:.0})")
             };
             let _ = writeln!(
                 s,

@@ -29,10 +29,11 @@
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
 /// How far, in decades of error, a run may lie from the target and still
-/// predict its cost. One decade either side holds, for a twelfth-order pair
-/// (steps `~ TOL^(-1/11)`, a step count every eighth of a decade at 40
-/// steps, every third at 10), three to twenty distinct step counts; half a
-/// decade leaves too few at the loosest targets to form an interval.
+/// predict its cost. One decade either side spans, for a twelfth-order
+/// method (error `~ N^(-12)`), a factor `10^(2/12) = 1.47` of step counts:
+/// about five distinct counts at 10 steps, twenty at 40, more beyond. Half a
+/// decade leaves two or three at the loosest targets, too few for an
+/// interval.
 pub const WINDOW_DECADES: f64 = 1.0;
 
 /// The fewest distinct step counts that form an interval: with two, the t
@@ -52,8 +53,6 @@ pub struct Run {
 /// The estimated cost at a target.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TargetCost {
-    /// `exp` of the mean log prediction.
-    pub cost: f64,
     /// The mean log prediction and its standard error.
     pub ln_mean: f64,
     pub ln_standard_error: f64,
@@ -62,6 +61,11 @@ pub struct TargetCost {
 }
 
 impl TargetCost {
+    /// The estimate, `exp` of the mean log prediction.
+    pub fn cost(&self) -> f64 {
+        self.ln_mean.exp()
+    }
+
     /// The 95% interval of the cost.
     pub fn interval(&self) -> [f64; 2] {
         let half = t975((self.counts - 1) as f64) * self.ln_standard_error;
@@ -86,7 +90,7 @@ impl Reach {
     /// The estimate, or the measured cost of reaching the target.
     pub fn cost(&self) -> Option<f64> {
         match self {
-            Reach::Estimated(c) => Some(c.cost),
+            Reach::Estimated(c) => Some(c.cost()),
             Reach::Bracketed { most, .. } => Some(*most),
             Reach::NotReached => None,
         }
@@ -96,7 +100,6 @@ impl Reach {
     pub fn scaled(self, factor: f64) -> Reach {
         match self {
             Reach::Estimated(c) => Reach::Estimated(TargetCost {
-                cost: c.cost * factor,
                 ln_mean: c.ln_mean + factor.ln(),
                 ..c
             }),
@@ -115,6 +118,18 @@ impl Reach {
             Reach::Bracketed { least, most } => Some([*least, *most]),
             Reach::NotReached => None,
         }
+    }
+}
+
+/// The median of `values` (the mean of the middle two for an even count);
+/// `None` when there are none.
+pub fn median(mut values: Vec<f64>) -> Option<f64> {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    match n {
+        0 => None,
+        _ if n % 2 == 1 => Some(values[n / 2]),
+        _ => Some(0.5 * (values[n / 2 - 1] + values[n / 2])),
     }
 }
 
@@ -163,7 +178,6 @@ pub fn target_cost(runs: &[Run], target: f64, order: f64) -> Reach {
     let mean = predictions.iter().sum::<f64>() / n as f64;
     let variance = predictions.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
     Reach::Estimated(TargetCost {
-        cost: mean.exp(),
         ln_mean: mean,
         ln_standard_error: (variance / n as f64).sqrt(),
         counts: n,
@@ -233,7 +247,7 @@ mod tests {
         // e = (5/N)^12 reaches 1e-9 at N = 5 * 10^(9/12) = 28.12
         let c = estimate(&exact_runs(12.0, 5.0), 1e-9);
         let expected = 5.0 * 10f64.powf(0.75);
-        assert!((c.cost / expected - 1.0).abs() < 1e-12, "{}", c.cost);
+        assert!((c.cost() / expected - 1.0).abs() < 1e-12, "{}", c.cost());
         let [lo, hi] = c.interval();
         assert!(hi / lo - 1.0 < 1e-10);
         // the window: errors from 1e-10 to 1e-8, N from 5 * 10^(8/12) = 23.2
@@ -257,7 +271,7 @@ mod tests {
         assert_eq!(c.counts, 11);
         // the count's two predictions average: 3^(1/12) on one of 11
         let expected = 5.0 * 10f64.powf(0.75) * 3f64.powf(1.0 / 24.0 / 11.0);
-        assert!((c.cost / expected - 1.0).abs() < 1e-12, "{}", c.cost);
+        assert!((c.cost() / expected - 1.0).abs() < 1e-12, "{}", c.cost());
     }
 
     #[test]
@@ -366,6 +380,13 @@ mod tests {
         };
         assert_eq!(bracket.scaled(3.0), scaled);
         assert_eq!(Reach::NotReached.scaled(3.0), Reach::NotReached);
+    }
+
+    #[test]
+    fn the_median_takes_the_middle_or_the_mean_of_the_middle_two() {
+        assert_eq!(median(vec![3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(vec![4.0, 1.0, 3.0, 2.0]), Some(2.5));
+        assert_eq!(median(Vec::new()), None);
     }
 
     fn reach_with_interval() -> Reach {
