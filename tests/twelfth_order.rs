@@ -110,53 +110,61 @@ fn pleiades_error<const S: usize>(pair: &EmbeddedPair<S>, tol: f64) -> f64 {
 /// Why compensation: a Pleiades run of a thousand-odd steps adds its
 /// increments to coordinates of order one, rounding each by about `eps/2`;
 /// the close encounters amplify those roundings by a few hundred, so no
-/// tolerance takes the plain pairs below about 1e-11 (2.9e-12 at best, for
-/// the twelfth-order pair at 1e-14), the smallest target of the race.
-/// Compensated, a step loses only the rounding of its increments (`h w`
-/// times less), and each pair gets below 1e-12 at some tolerance from
-/// 1e-13 to 1e-16. Not at every one: there the error is the force's own
-/// rounding amplified by the encounters, and a change in the last bit of
-/// the steps moves it by a factor of ten either way (3e-13 to 4e-12 for
-/// the twelfth-order pair over these tolerances), so no single tolerance
-/// is asked to.
+/// tolerance takes the plain pairs below about 1e-11 (2.1e-12 at best over
+/// seventeen tolerances a quarter-decade apart from 1e-12 to 1e-16, medians
+/// 1.9e-11 for DPRKN8(6) and 1.3e-11 for RKN12(10)). Compensated, a step
+/// loses only the rounding of its increments (`h w` times less), and what
+/// remains is the force's own rounding amplified by the encounters, which a
+/// change in the last bit of the steps moves by a factor of ten either way
+/// (2.3e-13 to 1.7e-12 for DPRKN8(6) over these tolerances, 8e-13 to
+/// 7e-12 for RKN12(10)). So the floor is judged by its median over the
+/// ladder, not at any one tolerance: DPRKN8(6)'s compensated median (6e-13)
+/// lies below 1e-12, the smallest Pleiades target of the race, and each
+/// pair's compensated median lies below its plain one.
 #[test]
 fn on_the_pleiades_only_compensated_pairs_reach_below_1e_12() {
-    let tolerances = [1e-13, 1e-14, 1e-15, 1e-16];
-    for tol in [1e-12].iter().chain(&tolerances) {
-        for e in [
-            pleiades_error(&DPRKN8_ADAPTIVE, *tol),
-            pleiades_error(&DPRKN12_ADAPTIVE, *tol),
-        ] {
-            assert!(e > 1e-12, "{tol:e}: {e:e}");
-        }
+    let tolerances: Vec<f64> = (0..=16)
+        .map(|k| 10f64.powf(-12.0 - k as f64 / 4.0))
+        .collect();
+    let median = |mut errors: Vec<f64>| {
+        errors.sort_by(f64::total_cmp);
+        errors[errors.len() / 2]
+    };
+    let ladder = |errors: &dyn Fn(f64) -> f64| tolerances.iter().map(|&t| errors(t)).collect();
+    let plain8: Vec<f64> = ladder(&|t| pleiades_error(&DPRKN8_ADAPTIVE, t));
+    let plain12: Vec<f64> = ladder(&|t| pleiades_error(&DPRKN12_ADAPTIVE, t));
+    for (tol, e) in tolerances.iter().zip(plain8.iter().chain(&plain12)) {
+        assert!(*e > 1e-12, "{tol:e}: {e:e}");
     }
-    let best = |errors: Vec<f64>| errors.into_iter().fold(f64::INFINITY, f64::min);
-    let e8 = best(
-        tolerances
-            .map(|tol| pleiades_error(&DPRKN8_COMPENSATED, tol))
-            .to_vec(),
+    let compensated8 = median(ladder(&|t| pleiades_error(&DPRKN8_COMPENSATED, t)));
+    let compensated12 = median(ladder(&|t| pleiades_error(&DPRKN12_COMPENSATED, t)));
+    let (plain8, plain12) = (median(plain8), median(plain12));
+    assert!(compensated8 < 1e-12, "{compensated8:e}");
+    assert!(
+        compensated8 < plain8 && compensated12 < plain12,
+        "{compensated8:e} {plain8:e} {compensated12:e} {plain12:e}"
     );
-    let e12 = best(
-        tolerances
-            .map(|tol| pleiades_error(&DPRKN12_COMPENSATED, tol))
-            .to_vec(),
-    );
-    assert!(e8 < 1e-12 && e12 < 1e-12, "{e8:e} {e12:e}");
 }
 
-/// The twelfth-order pair's tolerance ladder on the eccentric orbit: its
-/// error reaches round-off within a few decades of tolerance, so its fitted
-/// exponent's interval holds the predicted 12/11 and 0 alike, and the
-/// claim is left undecided rather than passed. On the circular orbit the
-/// interval excludes 0 and holds 12/11: a pass.
+/// The twelfth-order pair's tolerance ladder on the eccentric orbit under
+/// the standard controller: its error reaches round-off within a few decades
+/// of tolerance, so its fitted exponent's interval holds the predicted 12/11
+/// and 0 alike, and the claim is left undecided rather than passed. Under
+/// the pair's predictive controller, whose steps the eccentric orbit's
+/// pericentre rejects less often, the interval excludes 0 and holds 12/11,
+/// as it does on the circular orbit: a pass.
 #[test]
 fn an_exponent_interval_holding_zero_decides_nothing() {
     use stepladder::internals::adaptive::{ToleranceLadderSpec, tolerance_ladder};
     use stepladder::scene::KeplerCircular;
+    use stepladder::scheme::Controller;
     use stepladder::study::Verdict;
     let spec = ToleranceLadderSpec::default();
-    let eccentric =
-        tolerance_ladder(&DPRKN12_ADAPTIVE, &KeplerEccentric::default(), &spec).unwrap();
+    let standard = EmbeddedPair {
+        controller: Controller::standard(11),
+        ..DPRKN12_ADAPTIVE
+    };
+    let eccentric = tolerance_ladder(&standard, &KeplerEccentric::default(), &spec).unwrap();
     let p = eccentric.proportionality.unwrap();
     println!("{}", eccentric.reason);
     assert!(p.ci95[0] <= 0.0 && 12.0 / 11.0 <= p.ci95[1], "{p:?}");
@@ -171,10 +179,14 @@ fn an_exponent_interval_holding_zero_decides_nothing() {
         "{}",
         eccentric.reason
     );
-    let circular = tolerance_ladder(&DPRKN12_ADAPTIVE, &KeplerCircular, &spec).unwrap();
-    let p = circular.proportionality.unwrap();
-    assert!(p.ci95[0] > 0.0 && p.agrees(), "{p:?}");
-    assert_eq!(circular.verdict, Verdict::Pass, "{}", circular.reason);
+    for ladder in [
+        tolerance_ladder(&DPRKN12_ADAPTIVE, &KeplerEccentric::default(), &spec).unwrap(),
+        tolerance_ladder(&DPRKN12_ADAPTIVE, &KeplerCircular, &spec).unwrap(),
+    ] {
+        let p = ladder.proportionality.unwrap();
+        assert!(p.ci95[0] > 0.0 && p.agrees(), "{p:?}");
+        assert_eq!(ladder.verdict, Verdict::Pass, "{}", ladder.reason);
+    }
 }
 
 /// The error estimate is the main solution minus the embedded one, in that
@@ -215,8 +227,8 @@ fn the_estimate_is_main_minus_embedded() {
 
 /// A run that would need more than the pairs' step limit ends there, with the
 /// limit named, after exactly that many tries: the compensated
-/// twelfth-order pair asked for 1e-12 over 2e5 periods of the oscillator
-/// (some twenty steps a period, four million in all).
+/// twelfth-order pair asked for 1e-12 over 3e5 periods of the oscillator
+/// (eight steps a period, 2.4 million in all).
 #[test]
 fn a_run_past_the_step_limit_ends_there() {
     use stepladder::scene::Harmonic;
@@ -224,9 +236,9 @@ fn a_run_past_the_step_limit_ends_there() {
     const MAX_STEPS: u64 = 2_000_000;
     let scene = Harmonic::default();
     let run = DPRKN12_COMPENSATED
-        .run(&scene, 2e5 * scene.period(), 1e-12)
+        .run(&scene, 3e5 * scene.period(), 1e-12)
         .unwrap();
     assert_eq!(run.end, RunEnd::StepLimit);
     assert_eq!(run.accepted + run.rejected, MAX_STEPS);
-    assert!(run.trajectory.last().unwrap().0 < 2e5 * scene.period());
+    assert!(run.trajectory.last().unwrap().0 < 3e5 * scene.period());
 }

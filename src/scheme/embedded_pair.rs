@@ -1,6 +1,6 @@
 //! The crate's own adaptive integrators: embedded Runge-Kutta-Nyström
-//! pairs with the standard step-size controller (Hairer, Nørsett, Wanner I,
-//! II.4).
+//! pairs with a predictive step-size controller (Hairer, Nørsett, Wanner I,
+//! II.4 and II, IV.2).
 //!
 //! Each step is tried with the main (order `p`) and the embedded (order `q`)
 //! solution from the same stages; their difference `err` estimates the
@@ -8,7 +8,7 @@
 //! root-mean-square norm `||e|| = sqrt(mean_i (e_i / sc_i)^2)`, `sc_i = tol
 //! (1 + max(|y0_i|, |y1_i|))`, the step is accepted when `||err|| <= 1` and
 //! the run continues with the main solution (local extrapolation). Either
-//! way the next step is
+//! way the standard next step is
 //!
 //! `h_new = h min(max_growth, max(max_shrink, safety ||err||^(-1/(q+1))))`,
 //!
@@ -26,6 +26,32 @@
 //!   which for a fifth-power estimate is `0.2^5 = 3e-4` of its error, enough
 //!   for any smooth change and still a bounded retreat where the estimate is
 //!   non-finite.
+//!
+//! After the second and later accepted steps the pairs take the smaller of
+//! that step and Gustafsson's predicted one (HNW II, IV.2, (2.43); RADAU5
+//! does the same):
+//!
+//! `h_new = h safety ||err_n||^(-1/(q+1)) (h_n / h_(n-1)) (||err_(n-1)|| /
+//! ||err_n||)^(1/(q+1))`,
+//!
+//! with `n - 1` the accepted step before. The standard step assumes `C`
+//! stays put; the predicted one extrapolates how `C` moved over the last
+//! accepted step (`C_n / C_(n-1)`, read off the two estimates and steps) one
+//! step further. Taking the smaller shortens a step only where `C` is
+//! growing, which is where the standard step is rejected: on an orbit that
+//! falls towards pericentre, and where the estimate swings from step to
+//! step as the outer solar system's does at 800-day steps. Where `C` stays
+//! put the two agree, so the controller settles at the same fixed point,
+//! `||err|| = safety^(q+1)`, and the tolerance proportionality below holds
+//! unchanged. Both estimates are taken no smaller than `(safety /
+//! max_growth)^(q+1)`, the estimate at which the standard step reaches its
+//! cap: below it an estimate no longer steers the step (the cap does), and
+//! a near-zero estimate would otherwise predict an arbitrarily steep rise of
+//! `C` on the step after it. Measured with DPRKN6(4), DPRKN8(6) and
+//! RKN12(10) on both Kepler orbits, the Pleiades and the outer solar system
+//! from `1e-6` to `1e-14`, eight tolerances a decade: the evaluations to
+//! reach a given error fell by up to a quarter (the eccentric orbit and the
+//! Pleiades) and rose beyond the scatter nowhere.
 //!
 //! The first step is the motion's own time scale, and the pair's estimate
 //! corrects it (see `first_trial` below): the trial is `||y0|| /
@@ -84,6 +110,17 @@ pub struct Controller {
     pub max_shrink: f64,
     /// The exponent of the error ratio, `1/(q+1)` for an estimate `~ h^(q+1)`.
     pub exponent: f64,
+    /// Whether an accepted step's successor is also held to Gustafsson's
+    /// predicted step (see the module documentation).
+    pub predictive: bool,
+}
+
+/// An accepted step and its scaled estimate: what the predictive
+/// controller extrapolates from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct AcceptedStep {
+    step: f64,
+    err: f64,
 }
 
 impl Controller {
@@ -95,7 +132,40 @@ impl Controller {
             max_growth: 5.0,
             max_shrink: 0.2,
             exponent: 1.0 / estimate_power as f64,
+            predictive: false,
         }
+    }
+
+    /// The standard controller held also to Gustafsson's predicted step:
+    /// the pairs' controller.
+    pub const fn predictive(estimate_power: u32) -> Self {
+        Self {
+            predictive: true,
+            ..Self::standard(estimate_power)
+        }
+    }
+
+    /// The ratio of the next step to the step `h` just accepted with
+    /// estimate `err`, given the accepted step before it (none for the
+    /// first), capped at `growth_cap`.
+    fn accepted_ratio(
+        &self,
+        err: f64,
+        h: f64,
+        before: Option<AcceptedStep>,
+        growth_cap: f64,
+    ) -> f64 {
+        let standard = self.ratio(err, growth_cap);
+        let Some(before) = before.filter(|_| self.predictive) else {
+            return standard;
+        };
+        // the estimate at which the standard step reaches its cap
+        let floor = (self.safety / self.max_growth).powf(1.0 / self.exponent);
+        let now = err.max(floor);
+        let then = before.err.max(floor);
+        let predicted = self.safety * (h / before.step) * (then / now).powf(self.exponent)
+            / now.powf(self.exponent);
+        standard.min(predicted.clamp(self.max_shrink, growth_cap))
     }
 
     /// The ratio of the next step to this one after an estimate `err`
@@ -133,10 +203,10 @@ pub struct EmbeddedPair<const S: usize> {
     pub compensated: bool,
 }
 
-/// Dormand and Prince's RKN6(4) with the standard controller.
+/// Dormand and Prince's RKN6(4) with the predictive controller.
 pub const DPRKN6_ADAPTIVE: EmbeddedPair<6> = EmbeddedPair::new("DPRKN6(4) adaptive", &DPRKN6);
 
-/// Dormand, El-Mikkawy and Prince's RKN8(6) with the standard controller:
+/// Dormand, El-Mikkawy and Prince's RKN8(6) with the predictive controller:
 /// eight force evaluations a step for order eight, against the twelve of
 /// DOP853 on `(q, v)`.
 pub const DPRKN8_ADAPTIVE: EmbeddedPair<9> = EmbeddedPair::new("DPRKN8(6) adaptive", &DPRKN8);
@@ -145,7 +215,7 @@ pub const DPRKN8_ADAPTIVE: EmbeddedPair<9> = EmbeddedPair::new("DPRKN8(6) adapti
 pub const DPRKN8_COMPENSATED: EmbeddedPair<9> =
     EmbeddedPair::new("DPRKN8(6) compensated", &DPRKN8).with_compensated_sums();
 
-/// Dormand, El-Mikkawy and Prince's RKN12(10) with the standard controller:
+/// Dormand, El-Mikkawy and Prince's RKN12(10) with the predictive controller:
 /// seventeen force evaluations a step for order twelve.
 pub const DPRKN12_ADAPTIVE: EmbeddedPair<17> = EmbeddedPair::new("DPRKN12(10) adaptive", &DPRKN12);
 
@@ -155,7 +225,7 @@ pub const DPRKN12_COMPENSATED: EmbeddedPair<17> =
     EmbeddedPair::new("DPRKN12(10) compensated", &DPRKN12).with_compensated_sums();
 
 impl<const S: usize> EmbeddedPair<S> {
-    /// The pair of `table` with the standard controller for its estimate.
+    /// The pair of `table` with the predictive controller for its estimate.
     /// A table without an embedded solution is refused at compile time.
     pub const fn new(name: &'static str, table: &'static NystromTable<S>) -> Self {
         let Some(embedded) = table.embedded else {
@@ -164,7 +234,7 @@ impl<const S: usize> EmbeddedPair<S> {
         Self {
             name,
             table,
-            controller: Controller::standard(embedded.order + 1),
+            controller: Controller::predictive(embedded.order + 1),
             compensated: false,
         }
     }
@@ -276,6 +346,7 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
         };
         let mut t = 0.0;
         let mut just_rejected = false;
+        let mut before: Option<AcceptedStep> = None;
         while t < t_end {
             if run.accepted + run.rejected >= MAX_STEPS {
                 run.end = RunEnd::StepLimit;
@@ -338,7 +409,9 @@ impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
                 };
                 run.trajectory.push((t, y));
                 run.accepted += 1;
-                h *= self.controller.ratio(err, cap);
+                let ratio = self.controller.accepted_ratio(err, h, before, cap);
+                before = Some(AcceptedStep { step: h, err });
+                h *= ratio;
                 just_rejected = false;
             } else {
                 run.rejected += 1;
@@ -487,17 +560,135 @@ mod tests {
     }
 
     /// The controller's fixed point: with an estimate `C h^5` held
-    /// constant, `h_new = 0.9 h err^(-1/5)` settles at `err = 0.9^5`.
+    /// constant, `h_new = 0.9 h err^(-1/5)` settles at `err = 0.9^5`, and
+    /// the predictive controller at the same point (its predicted step is
+    /// the standard one when `C` stays put).
     #[test]
     fn the_controller_settles_at_safety_to_the_estimate_power() {
-        let c = Controller::standard(5);
-        let mut h: f64 = 1.0;
-        for _ in 0..200 {
-            let err = 3.0 * h.powi(5);
-            h *= c.ratio(err, c.max_growth);
+        for c in [Controller::standard(5), Controller::predictive(5)] {
+            let mut h: f64 = 1.0;
+            let mut before = None;
+            for _ in 0..200 {
+                let err = 3.0 * h.powi(5);
+                let ratio = c.accepted_ratio(err, h, before, c.max_growth);
+                before = Some(AcceptedStep { step: h, err });
+                h *= ratio;
+            }
+            assert!((3.0 * h.powi(5) / 0.9f64.powi(5) - 1.0).abs() < 1e-12);
         }
-        assert!((3.0 * h.powi(5) / 0.9f64.powi(5) - 1.0).abs() < 1e-12);
+        let c = Controller::standard(5);
         assert_eq!(c.ratio(f64::INFINITY, 5.0), 0.2);
         assert_eq!(c.ratio(0.0, 5.0), 5.0);
+    }
+
+    /// Where `C` grows by a factor `g` each step, the standard step lags:
+    /// `h_(n+1) = 0.9 h_n err_n^(-1/5)` meets `C_(n+1) = g C_n`, so its
+    /// estimates settle at `g 0.9^5`, and for `g > 0.9^(-5) = 1.69` every
+    /// step is rejected. The predicted step reads `g` off the last two
+    /// estimates: `(err_(n-1) / err_n)^(1/5) = g^(-1/5) h_(n-1) / h_n`, so
+    /// `h_(n+1) = 0.9 h_n (g err_n)^(-1/5)` and `err_(n+1) = 0.9^5` exactly
+    /// from the third step on. Where `C` falls, the standard step is the
+    /// smaller and is kept: the estimates settle at `g 0.9^5`, below the
+    /// aim.
+    #[test]
+    fn the_predicted_step_follows_an_estimate_that_grows() {
+        let aim = 0.9f64.powi(5);
+        for g in [3.0, 1.3, 0.5] {
+            for c in [Controller::standard(5), Controller::predictive(5)] {
+                let (mut h, mut constant) = (0.1f64, 1.0);
+                let mut before = None;
+                let mut err = 0.0;
+                for _ in 0..20 {
+                    err = constant * h.powi(5);
+                    let ratio = c.accepted_ratio(err, h, before, 100.0);
+                    before = Some(AcceptedStep { step: h, err });
+                    h *= ratio;
+                    constant *= g;
+                }
+                let settled = if c.predictive && g > 1.0 {
+                    aim
+                } else {
+                    g * aim
+                };
+                assert!((err / settled - 1.0).abs() < 1e-12, "{g} {c:?} {err}");
+            }
+        }
+    }
+
+    /// The predicted step: the standard one times `(h_n / h_(n-1))
+    /// (err_(n-1) / err_n)^(1/5)`, kept when smaller; a controller without
+    /// prediction ignores the history; an estimate below the one at which
+    /// the standard step reaches its cap, `(0.9 / 5)^5`, counts as that one,
+    /// so a previous estimate of zero does not predict a collapse.
+    #[test]
+    fn the_predicted_step_is_taken_only_when_smaller() {
+        let c = Controller::predictive(5);
+        let standard = |err: f64| 0.9 * err.powf(-0.2);
+        let before = |step, err| Some(AcceptedStep { step, err });
+        let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-14;
+        let rising = c.accepted_ratio(0.4, 1.0, before(1.0, 0.1), 5.0);
+        assert!(close(rising, standard(0.4) * 0.25f64.powf(0.2)));
+        assert!(close(
+            c.accepted_ratio(0.1, 1.0, before(1.0, 0.4), 5.0),
+            standard(0.1)
+        ));
+        assert!(close(
+            c.accepted_ratio(0.4, 2.0, before(1.0, 0.4), 5.0),
+            standard(0.4)
+        ));
+        let shrunk = c.accepted_ratio(0.4, 0.5, before(1.0, 0.4), 5.0);
+        assert!(close(shrunk, 0.5 * standard(0.4)));
+        assert!(close(c.accepted_ratio(0.4, 1.0, None, 5.0), standard(0.4)));
+        let plain = Controller::standard(5);
+        assert!(close(
+            plain.accepted_ratio(0.4, 1.0, before(1.0, 0.1), 5.0),
+            standard(0.4)
+        ));
+        let floor = 0.18f64.powi(5);
+        let from_zero = c.accepted_ratio(0.4, 1.0, before(1.0, 0.0), 5.0);
+        assert!(close(from_zero, standard(0.4) * (floor / 0.4).powf(0.2)));
+        assert_eq!(
+            c.accepted_ratio(0.4, 1.0, before(1.0, floor / 10.0), 5.0),
+            from_zero
+        );
+        // two estimates of zero: both steps at the cap
+        assert!(close(
+            c.accepted_ratio(0.0, 1.0, before(1.0, 0.0), 5.0),
+            5.0
+        ));
+    }
+
+    /// On the eccentric orbit `C` rises on every fall towards pericentre,
+    /// where the standard step lags (see above) and is rejected. Each pair
+    /// with the predictive controller is rejected at no tolerance more often
+    /// than with the standard one and less often over the ladder
+    /// (measured: DPRKN8(6) 31 rejections against 123 from `1e-6` to
+    /// `1e-12`, RKN12(10) 39 against 103, DPRKN6(4) 7 against 34).
+    #[test]
+    fn the_predictive_controller_is_rejected_less_on_the_eccentric_orbit() {
+        fn rejections<const S: usize>(pair: EmbeddedPair<S>, tol: f64) -> u64 {
+            let scene = KeplerEccentric::default();
+            let run = pair.run(&scene, scene.default_t_end(), tol).unwrap();
+            assert_eq!(run.end, RunEnd::Reached);
+            run.rejected
+        }
+        fn compare<const S: usize>(pair: EmbeddedPair<S>, power: u32) {
+            let standard = EmbeddedPair {
+                controller: Controller::standard(power),
+                ..pair
+            };
+            let (mut fewer, mut more) = (0, 0);
+            for k in 6..=12 {
+                let tol = 10f64.powi(-k);
+                let (p, s) = (rejections(pair, tol), rejections(standard, tol));
+                assert!(p <= s, "{} at {tol:e}: {p} > {s}", pair.name);
+                fewer += p;
+                more += s;
+            }
+            assert!(fewer < more, "{}: {fewer} against {more}", pair.name);
+        }
+        compare(DPRKN6_ADAPTIVE, 5);
+        compare(DPRKN8_ADAPTIVE, 7);
+        compare(DPRKN12_ADAPTIVE, 11);
     }
 }
