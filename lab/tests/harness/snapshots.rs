@@ -35,8 +35,8 @@ fn suite_tables_are_unchanged() {
     )
     .bind(|| insta::assert_snapshot!("stability_table", stability_table(&records.stability)));
     settings(
-        "Tolerance ladders of the adaptive integrators (own DPRKN6(4) and DPRKN8(6) \
-         pairs, ode_solvers Dop853, numeris RKV98NoInterp) on every scene: the fitted exponent of error ~ TOL^k with its interval and \
+        "Tolerance ladders of the adaptive integrators (own DPRKN6(4), DPRKN8(6) and \
+         DPRKN12(10) pairs, the last two also compensated, ode_solvers Dop853, numeris RKV98NoInterp) on every scene: the fitted exponent of error ~ TOL^k with its interval and \
          theory, evaluations and error at three tolerances, the energy class of a long run \
          and the round trip at TOL = 1e-8, the verdict.",
     )
