@@ -643,7 +643,9 @@ fn race_summary(races: &[SceneRace]) -> String {
          the largest component against `tol (1 + max(|y0|, |y1|))` (traits.rs, `compute_normalized_error_s`)\n\
          where stepladder takes the root mean square of the same ratios; brahe grows an accepted step by\n\
          `0.9 err^(-1/12)` within 0.2 to 10 times and at most 900 time units (config.rs, `Default`), stepladder\n\
-         by `0.9 err^(-1/11)` within 0.2 to 5 times; brahe's first attempt is the step its caller passes\n\
+         by `0.9 err^(-1/11)` within 0.2 to 5 times, or by Gustafsson's predicted step where that is\n\
+         smaller (the estimate's growth over the last two accepted steps carried one step further, which\n\
+         the pairs take to be rejected less where the estimate grows); brahe's first attempt is the step its caller passes\n\
          (here the whole interval, cut to no less than a fifth a rejection), stepladder's first trial is the\n\
          state's size over its rate in the same scaled norm, `||y0|| / ||f(y0)||`, a rejected one retried\n\
          where its estimate points; stepladder's compensated pair adds each increment with its rounding\n\
