@@ -50,17 +50,23 @@
 //! `C` on the step after it. Measured with DPRKN6(4), DPRKN8(6) and
 //! RKN12(10) on both Kepler orbits, the Pleiades and the outer solar system
 //! from `1e-6` to `1e-14`, eight tolerances a decade: the evaluations to
-//! reach a given error fell by up to a quarter (the eccentric orbit and the
+//! reach a given error fell by up to a fifth (the eccentric orbit and the
 //! Pleiades) and rose beyond the scatter nowhere.
 //!
 //! The first step is the motion's own time scale, and the pair's estimate
 //! corrects it (see `first_trial` below): the trial is `||y0|| /
-//! ||f(y0)||`, the time in which the state would change by its own size, and
-//! when the estimate rejects it, the retry is at the step the estimate asks
-//! for, `safety ||err||^(-1/(q+1))` of the trial, however far below a fifth
+//! ||f(y0)||`, the time in which the state would change by its own size,
+//! each block (positions, velocities) measured by its Euclidean length so
+//! that the scale does not depend on how the axes are turned, and when the
+//! estimate rejects it, the retry is at the step the estimate asks for,
+//! `safety ||err||^(-1/(q+1))` of the trial, however far below a fifth
 //! (down to [`FIRST_RETRY_FLOOR`]). The `0.2` limit guards a run whose step
 //! is already about right against one odd estimate; the first trial has no
-//! such history.
+//! such history. A trial shorter than the step `h*` the estimate allows
+//! wastes the fraction `1 - h0/h*` of a step (and a second short step below
+//! `h*/5`, where growth is capped); a longer one wastes one rejected step.
+//! So the trial costs at most about one step whichever side of `h*` it
+//! falls, as long as it is not far below it.
 //!
 //! With compensated sums ([`EmbeddedPair::with_compensated_sums`]) the
 //! state is carried as `value + low` and each step's increments are added
@@ -262,11 +268,26 @@ fn scaled_norm<const D: usize>(e: &State<D>, y0: &State<D>, y1: &State<D>, tol: 
 }
 
 impl<const S: usize> EmbeddedPair<S> {
-    /// The first step to try: `||y0|| / ||f(y0)||` in the scaled norm, the
-    /// time in which the state would change by its own size (HNW I, II.4:
-    /// `100 h0`, their starting step's upper bound), or `1e-4` when the
-    /// state or its rate is too small to measure (their `h0 = 1e-6`), no
-    /// longer than the run. No force evaluation.
+    /// The first step to try: `||y0|| / ||f(y0)||`, the time in which the
+    /// state would change by its own size (HNW I, II.4: `100 h0`, their
+    /// starting step's upper bound), or `1e-4` when the state or its rate is
+    /// too small to measure (their `h0 = 1e-6`), no longer than the run. No
+    /// force evaluation.
+    ///
+    /// The norm is the scaled one with each block's length in place of each
+    /// component's: every position component weighs `1 / (TOL (1 + |q0|))`
+    /// and every velocity component `1 / (TOL (1 + |v0|))`, with `|.|` the
+    /// Euclidean length of the block. A motion's time scale does not depend
+    /// on the orientation of the axes, and per component it does: a
+    /// component passing through zero is measured against the absolute unit
+    /// of the tolerance, and its rate then sets the scale. The circular
+    /// orbit started on the x axis (`v0_x = 0`, `a0_x = -4 pi^2`) gave 0.025
+    /// of a year that way, and the same orbit started at 45 degrees 0.159,
+    /// its `1 / omega`; with block lengths both give `1 / omega` exactly
+    /// (`|v0| = omega |q0|`, `|a0| = omega |v0|`). DPRKN12(10) then steps
+    /// 0.36 of a year at tolerance `1e-6`, and the trial of 0.025 had cost
+    /// it two steps short of that (0.025, and 0.125 where growth is capped
+    /// at five).
     ///
     /// HNW's own guess, `h1 = (0.01 / max(||f0||, ||f'||))^(1/(q+1))`, is not
     /// used: it takes the local error of a step `h` to be about `h^(q+1)`
@@ -284,9 +305,13 @@ impl<const S: usize> EmbeddedPair<S> {
         tol: f64,
         t_end: f64,
     ) -> f64 {
-        let f0 = State::new(y0.v, *a0);
-        let d0 = scaled_norm(y0, y0, y0, tol);
-        let d1 = scaled_norm(&f0, y0, y0, tol);
+        // block weights; the mean over the 2D components cancels in d0 / d1
+        // but is kept so that the thresholds below read as in the error norm
+        let wq = 1.0 / (tol * (1.0 + y0.q.norm()));
+        let wv = 1.0 / (tol * (1.0 + y0.v.norm()));
+        let mean = |q: f64, v: f64| ((q * wq).powi(2) + (v * wv).powi(2)) / (2 * D) as f64;
+        let d0 = mean(y0.q.norm(), y0.v.norm()).sqrt();
+        let d1 = mean(y0.v.norm(), a0.norm()).sqrt();
         let scale = if d0 < 1e-5 || d1 < 1e-5 {
             1e-4
         } else {
@@ -474,19 +499,17 @@ mod tests {
         assert_eq!(c.ratio(1e10, 1.0), c.max_shrink);
     }
 
-    /// The first trial on the circular orbit, `y0 = (1, 0, 0, 2 pi)`, `f0 =
-    /// (0, 2 pi, -4 pi^2, 0)`, weights `1 / (TOL (1 + |y0_i|))`: the ratio of
-    /// the RMS norms is `sqrt(1/4 + (2 pi / (1 + 2 pi))^2) / sqrt(4 pi^2 +
-    /// 16 pi^4)`, 0.0249 of a year, whatever the tolerance; no longer than
-    /// the run; `1e-4` where the state or its rate is too small to measure.
+    /// The first trial on the circular orbit is its `1 / omega = 1 / (2 pi)`
+    /// of a year, whatever the tolerance: `|v0| = omega |q0|` and `|a0| =
+    /// omega |v0|`, so the rate's norm is `omega` times the state's. No
+    /// longer than the run; `1e-4` where the state or its rate is too small
+    /// to measure.
     #[test]
     fn the_first_trial_is_the_states_size_over_its_rate() {
         let scene = KeplerCircular;
         let y0 = scene.initial();
         let a0 = scene.acceleration(&y0.q);
-        let pi = std::f64::consts::PI;
-        let w = 2.0 * pi / (1.0 + 2.0 * pi);
-        let expected = (0.25 + w * w).sqrt() / (4.0 * pi * pi + 16.0 * pi.powi(4)).sqrt();
+        let expected = 1.0 / (2.0 * std::f64::consts::PI);
         for tol in [1e-6, 1e-14] {
             let trial = DPRKN6_ADAPTIVE.first_trial(&y0, &a0, tol, 10.0);
             assert!((trial / expected - 1.0).abs() < 1e-12, "{trial} {expected}");
@@ -507,13 +530,49 @@ mod tests {
         );
     }
 
-    /// On the circular orbit the first trial is the state's size over its
-    /// rate in the scaled norm, `0.025` of a year, and DPRKN6(4) at tolerance
-    /// `1e-14` steps `t_end / 3189 = 8.9e-4`, 28 times shorter: the trial's
-    /// estimate is about `0.59 * 28^5 = 1e7` times the tolerance. Retreats
-    /// by a fifth need three rejections (`0.2^2 = 0.04 > 1/28`); the
-    /// estimate's own step needs one, two where the trial is outside the
-    /// estimate's asymptotic range. The orbit needs no other rejection.
+    /// Turning the axes turns every body's position, velocity and force
+    /// alike and leaves the first trial where it was. Per component it did
+    /// not: the circular orbit started on the x axis got 0.0249 of a year
+    /// (its `v0_x = 0` measured against the tolerance's absolute unit), the
+    /// same orbit started at 45 degrees 0.159.
+    #[test]
+    fn the_first_trial_does_not_depend_on_the_orientation_of_the_axes() {
+        fn turned<const D: usize>(
+            x: &nalgebra::SVector<f64, D>,
+            angle: f64,
+        ) -> nalgebra::SVector<f64, D> {
+            let (s, c) = angle.sin_cos();
+            let mut out = *x;
+            for body in 0..D / 2 {
+                let (a, b) = (x[2 * body], x[2 * body + 1]);
+                out[2 * body] = c * a - s * b;
+                out[2 * body + 1] = s * a + c * b;
+            }
+            out
+        }
+        fn check<P: Scene<D>, const D: usize>(scene: &P) {
+            let y0 = scene.initial();
+            let a0 = scene.acceleration(&y0.q);
+            let trial = DPRKN8_ADAPTIVE.first_trial(&y0, &a0, 1e-9, 1e9);
+            for angle in [0.3, std::f64::consts::FRAC_PI_4, 2.0, -1.1] {
+                let y = State::new(turned(&y0.q, angle), turned(&y0.v, angle));
+                let a = scene.acceleration(&y.q);
+                let t = DPRKN8_ADAPTIVE.first_trial(&y, &a, 1e-9, 1e9);
+                assert!((t / trial - 1.0).abs() < 1e-12, "{angle}: {t} {trial}");
+            }
+        }
+        check(&KeplerCircular);
+        check(&KeplerEccentric::default());
+        check(&crate::scene::Pleiades::default());
+    }
+
+    /// On the circular orbit the first trial is `1 / (2 pi) = 0.159` of a
+    /// year, and DPRKN6(4) at tolerance `1e-14` steps `t_end / 3189 =
+    /// 8.9e-4`, 179 times shorter: the trial's estimate is about `0.59 *
+    /// 179^5 = 1e11` times the tolerance. Retreats by a fifth would need four
+    /// rejections (`0.2^3 = 0.008 > 1/179`); the estimate's own step needs
+    /// one, two where the trial is outside the estimate's asymptotic range.
+    /// The orbit needs no other rejection.
     #[test]
     fn the_first_step_costs_at_most_two_rejections_on_the_circular_orbit() {
         let scene = KeplerCircular;

@@ -239,7 +239,8 @@ pub(super) fn judge_exponent(
             Verdict::Inconclusive,
             format!(
                 "error ~ TOL^{:.3} [{:.3}, {:.3}] contains the predicted {:.3} and 0 too: \
-                 too few tolerances are resolved above round-off to tell the claimed law \
+                 the ladder resolves too little of the error's fall (too few tolerances \
+                 above round-off, or too short a span of them) to tell the claimed law \
                  from an error that does not follow the tolerance",
                 f.exponent,
                 f.ci95[0],

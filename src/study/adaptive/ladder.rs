@@ -698,12 +698,22 @@ mod tests {
         assert_eq!(r.verdict, Verdict::Fail, "{}", r.reason);
     }
 
+    /// Both orbits' ladders agree with `6/5` and tell local extrapolation
+    /// from advancing with the embedded solution (`4/5`). The circular one
+    /// also tells it from the `1/p` controller's claim (`1`); the eccentric
+    /// one cannot: its error over `TOL^(6/5)` is not constant along the
+    /// ladder but falls from 25 at `1e-5` to 2.3 at `1e-8` and rises to 7 at
+    /// `1e-10` (two error terms of opposite sign cancel near `1e-8`), so the
+    /// interval is wide and where its lower end falls is a draw: measured
+    /// 1.275 [1.035, 1.514] with the first trial scaled per component and
+    /// 1.340 [0.974, 1.706] with it scaled per block, from errors that
+    /// differ by 7% at most.
     #[test]
     fn the_exponent_is_six_fifths_on_both_kepler_orbits() {
         let circular = tolerance_ladder(&DPRKN6_ADAPTIVE, &KeplerCircular, &spec()).unwrap();
         let eccentric =
             tolerance_ladder(&DPRKN6_ADAPTIVE, &KeplerEccentric::default(), &spec()).unwrap();
-        for r in [circular, eccentric] {
+        for (r, below) in [(circular, 1.0), (eccentric, 0.8)] {
             let p = r.proportionality.expect("an exponent");
             println!(
                 "{}: {:.3} {:?} ({} points)",
@@ -711,9 +721,7 @@ mod tests {
             );
             assert_eq!(p.theory, Some(1.2));
             assert!(p.agrees(), "{}: {}", r.scene, r.reason);
-            // it tells local extrapolation (6/5) from advancing with the
-            // embedded solution (4/5) and from the 1/p controller's claim (1)
-            assert!(p.ci95[0] > 1.0, "{}: {:?}", r.scene, p.ci95);
+            assert!(p.ci95[0] > below, "{}: {:?}", r.scene, p.ci95);
             assert_eq!(r.verdict, Verdict::Pass, "{}", r.reason);
         }
     }
