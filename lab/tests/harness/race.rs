@@ -330,7 +330,8 @@ fn the_exact_kepler_solutions_judge_down_to_their_rounding() {
 }
 
 /// The eccentric orbit's smallest target is at the edge of doubles (the
-/// report explains it with these figures wherever no run reaches it): the
+/// report explains it with these figures, whether or not a run of the
+/// ladder falls below it): the
 /// worst error of the compensated twelfth-order pair is a lag along the orbit (a
 /// shift in time leaves under a tenth of it unexplained), found near
 /// pericentre, where the phase-space speed is `S_p = 2 pi ((1+e)/(1-e) +
