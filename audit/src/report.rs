@@ -647,8 +647,9 @@ fn race_summary(races: &[SceneRace]) -> String {
          smaller (the estimate's growth over the last two accepted steps carried one step further, which\n\
          the pairs take to be rejected less where the estimate grows); brahe's first attempt is the step its caller passes\n\
          (here the whole interval, cut to no less than a fifth a rejection), stepladder's first trial is the\n\
-         state's size over its rate in the same scaled norm, `||y0|| / ||f(y0)||`, a rejected one retried\n\
-         where its estimate points; stepladder's compensated pair adds each increment with its rounding\n\
+         state's size over its rate, `||y0|| / ||f(y0)||`, in the same scaled norm with each block's\n\
+         (positions', velocities') length in place of each component's, a rejected one retried where its\n\
+         estimate points; stepladder's compensated pair adds each increment with its rounding\n\
          carried. Which of these makes the differences in the tables is not measured here.\n",
     );
     s
