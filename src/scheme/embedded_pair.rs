@@ -515,6 +515,28 @@ mod tests {
             assert!((trial / expected - 1.0).abs() < 1e-12, "{trial} {expected}");
         }
         assert_eq!(DPRKN6_ADAPTIVE.first_trial(&y0, &a0, 1e-10, 0.01), 0.01);
+        // at the eccentric orbit's pericentre the blocks' own scales differ
+        // (`|q|/|v| = 0.032`, `|v|/|a| = 0.051`), and the trial weighs them
+        // by the blocks' lengths: `r = 0.4`, `v = 4 pi`, `a = 4 pi^2 / r^2`
+        let scene = KeplerEccentric::default();
+        let (y0, a0) = (scene.initial(), scene.acceleration(&scene.initial().q));
+        let (r, v) = (0.4, 4.0 * std::f64::consts::PI);
+        let a = std::f64::consts::PI.powi(2) * 4.0 / (r * r);
+        let expected = (((r / (1.0 + r)).powi(2) + (v / (1.0 + v)).powi(2))
+            / ((v / (1.0 + r)).powi(2) + (a / (1.0 + v)).powi(2)))
+        .sqrt();
+        let trial = DPRKN6_ADAPTIVE.first_trial(&y0, &a0, 1e-8, 10.0);
+        assert!((trial / expected - 1.0).abs() < 1e-12, "{trial} {expected}");
+        // too small to measure means a root mean square of the scaled
+        // components below 1e-5: here 0.8e-5 (their root sum square, twice
+        // that, would be measured)
+        let x = 1.6e-5 / (1.0 - 1.6e-5);
+        let tiny = State::new(
+            nalgebra::SVector::from([x, 0.0]),
+            nalgebra::SVector::zeros(),
+        );
+        let pull = nalgebra::SVector::from([-1.0, 0.0]);
+        assert_eq!(DPRKN6_ADAPTIVE.first_trial(&tiny, &pull, 1.0, 10.0), 1e-4);
         let rest = State::new(nalgebra::SVector::zeros(), nalgebra::SVector::zeros());
         let zero = nalgebra::SVector::<f64, 2>::zeros();
         assert_eq!(DPRKN6_ADAPTIVE.first_trial(&rest, &zero, 1e-10, 10.0), 1e-4);
