@@ -245,3 +245,63 @@ fn a_run_past_the_step_limit_ends_there() {
     assert_eq!(run.accepted + run.rejected, MAX_STEPS);
     assert!(run.trajectory.last().unwrap().0 < 3e5 * scene.period());
 }
+
+/// A body at rest a hair from the origin in a uniform field, in three
+/// dimensions: no step of a Nyström pair errs on it (a constant force is
+/// integrated exactly), so the first trial is the first accepted step.
+#[derive(Clone, Copy)]
+struct TinyInUniformField;
+
+/// Its position, chosen so that the root mean square of the state's six
+/// scaled components (`x / (1 + x)` and five zeros, at tolerance 1) is
+/// `0.95e-5`: below the `1e-5` under which a state is too small to measure.
+const TINY_X: f64 = 0.95e-5 * 2.449_489_742_783_178 / (1.0 - 0.95e-5 * 2.449_489_742_783_178);
+
+impl Scene<3> for TinyInUniformField {
+    fn meta(&self) -> stepladder::scene::SceneMeta {
+        stepladder::scene::SceneMeta {
+            id: "tiny-in-uniform-field",
+            name: "a body at rest near the origin in a uniform field",
+            dimension: 3,
+            parameters: format!("x0 = {TINY_X:e}, a = (-1, 0, 0)"),
+            reference: "q'' = (-1, 0, 0)",
+        }
+    }
+    fn initial(&self) -> State<3> {
+        State::new(
+            nalgebra::SVector::from([TINY_X, 0.0, 0.0]),
+            nalgebra::SVector::zeros(),
+        )
+    }
+    fn acceleration<R: stepladder::state::Real>(
+        &self,
+        _: &nalgebra::SVector<R, 3>,
+    ) -> nalgebra::SVector<R, 3> {
+        nalgebra::SVector::from([-R::one(), R::zero(), R::zero()])
+    }
+    fn potential<R: stepladder::state::Real>(&self, q: &nalgebra::SVector<R, 3>) -> R {
+        q[0]
+    }
+    fn period(&self) -> f64 {
+        1.0
+    }
+    fn exact(&self, t: f64) -> Option<State<3>> {
+        Some(State::new(
+            nalgebra::SVector::from([TINY_X - t * t / 2.0, 0.0, 0.0]),
+            nalgebra::SVector::from([-t, 0.0, 0.0]),
+        ))
+    }
+}
+
+/// "Too small to measure" is judged on the root mean square over the
+/// state's `2D` scaled components, as the error norm is: at `D = 3` a state
+/// whose root mean square is `0.95e-5` starts at the fallback step `1e-4`.
+/// Averaged over `2 + D = 5` components it would read `1.04e-5` and be
+/// measured (a first step of `x / (1 + x) = 2.3e-5` over a rate of one).
+#[test]
+fn a_state_too_small_to_measure_starts_at_the_fallback_step() {
+    let scene = TinyInUniformField;
+    let run = DPRKN8_ADAPTIVE.run(&scene, 1e-2, 1.0).unwrap();
+    assert_eq!(run.rejected, 0);
+    assert_eq!(run.trajectory[1].0, 1e-4);
+}
