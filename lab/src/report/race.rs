@@ -316,9 +316,10 @@ pub fn race_section(race: &RaceRecords) -> String {
     out
 }
 
-/// Where IAS15 costs less than the crate's best, how close that target is
-/// to the smallest error any run of the crate's pairs reached on the scene:
-/// the pairs' costs there are those of runs at their round-off floor.
+/// Where IAS15 costs less than the crate's best, at which tolerance the
+/// crate's best pair first ends below that target, and the smallest error
+/// any run of the crate's pairs reached on the scene: figures, read off the
+/// same runs as the race.
 fn ias15_cheaper_note(race: &RaceRecords) -> String {
     let own = crate::suite::adaptive::OWN_PAIRS.len();
     let mut out = String::new();
@@ -332,26 +333,41 @@ fn ias15_cheaper_note(race: &RaceRecords) -> String {
         let Some(record) = race.nbody.iter().find(|n| n.reference.scene == r.scene) else {
             continue;
         };
-        let Some((who, tol, floor)) = record.adaptive[..own.min(record.adaptive.len())]
+        let pairs = &record.adaptive[..own];
+        let best_pair = race
+            .rows
+            .iter()
+            .find(|row| row.scene == r.scene && row.target == r.target)
+            .and_then(|row| row.pair.name);
+        let first_below = best_pair.and_then(|name| {
+            let ladder = pairs.iter().find(|l| l.contender == name)?;
+            let run = ladder
+                .points
+                .iter()
+                .find(|p| p.error.is_some_and(|e| e <= r.target))?;
+            Some((name, run.setting))
+        });
+        let smallest = pairs
             .iter()
             .flat_map(|l| {
                 l.points
                     .iter()
                     .filter_map(move |p| p.error.map(|e| (l.contender, p.setting, e)))
             })
-            .min_by(|a, b| a.2.total_cmp(&b.2))
-        else {
+            .min_by(|a, b| a.2.total_cmp(&b.2));
+        let (Some((name, tol)), Some((who, at, floor))) = (first_below, smallest) else {
             continue;
         };
         out.push_str(&format!(
             "\nIAS15 costs less than the crate's best on `{scene}` at {target:.0e} ({ratio:.2}). \
-             That target is {above:.1} times the smallest error any run of the crate's pairs \
-             reached there ({floor}, {who} at TOL {tol:.0e}): the pairs reach it only near their \
-             round-off floor, where a run's end error no longer follows its tolerance and the \
-             first run to end below the target is one of the ladder's tightest.\n",
+             The crate's best there, {name}, first ends below that target with its run at TOL \
+             {tol:.0e}, {decades:.0} decades tighter than the target, and the smallest error any \
+             run of the crate's pairs reached there is {floor} ({who} at TOL {at:.0e}), {above:.1} \
+             times below it.\n",
             scene = r.scene,
             target = r.target,
             ratio = cost / best,
+            decades = (r.target / tol).log10(),
             above = r.target / floor,
             floor = sci(floor),
         ));
