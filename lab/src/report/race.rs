@@ -4,12 +4,13 @@
 
 use super::markdown::{Table, sci};
 use super::markdown::{evaluations, time_reach};
-use crate::peer::peer_names;
+use crate::peer::{PEER_TOLERANCES, peer_names};
 use crate::suite::ias15::Ias15Row;
 use crate::suite::race::{
     DigitCost, DigitRow, NBODY_FIRST_STEPS, NBODY_FIRST_TOLERANCE, NBODY_TOLERANCES, NbodyRecord,
     RACE_TARGETS, REFERENCE_SHARE, RaceRecords, RaceRow,
 };
+use stepladder::internals::adaptive::ladder::TOLERANCES as ADAPTIVE_TOLERANCES;
 use stepladder::internals::cost::work_points::Reach;
 
 /// A contender's name in a table.
@@ -42,7 +43,7 @@ fn outcome(
     let verdict = match (best, peer) {
         (None, None) => match smallest_error {
             Some(e) => format!(
-                "neither side reaches it: no run's error went below {}",
+                "neither side reaches it: the smallest error of any run is {}",
                 sci(e)
             ),
             None => "neither side reaches it".to_string(),
@@ -101,7 +102,24 @@ fn rows_table(rows: &[RaceRow], unit: Unit) -> String {
         ];
         row.extend(r.peers.iter().map(|&p| show(p)));
         row.push(ratio(r.best_peer().map(|p| p.1), r.best()));
-        row.push(outcome(r.best(), r.best_peer(), r.smallest_error, r.judged));
+        let mut verdict = outcome(r.best(), r.best_peer(), r.smallest_error, r.judged);
+        // a contender the ladder's end kept from a target matters only
+        // where its last run costs less than every cost reached for good
+        let reached = r.best_peer().map(|p| p.1).into_iter().chain(r.best());
+        let beaten = reached.fold(f64::INFINITY, f64::min);
+        let named: Vec<String> = r
+            .unconfirmed
+            .iter()
+            .filter(|&&(_, cost)| cost < beaten)
+            .map(|&(name, cost)| format!("{} ({})", who(Some(name)), sci(cost)))
+            .collect();
+        if !named.is_empty() {
+            verdict.push_str(&format!(
+                "; met only by the last run of its ladder, unconfirmed: {}",
+                named.join(", ")
+            ));
+        }
+        row.push(verdict);
         t.row(row);
     }
     t.render()
@@ -257,11 +275,27 @@ pub fn race_section(race: &RaceRecords) -> String {
          distance. The N-body scenes have \
          no exact solution: there the error is the phase-space distance at the end time to \
          a reference state, each adaptive contender run from a tolerance of {} a decade at \
-         a time until its error is below the smallest target the reference judges, or \
-         down to a tolerance of {}, each fixed-step scheme from {} steps doubling until it reaches every target or its run \
-         that missed one already cost what the cheapest own pair spends there, after which \
-         it cannot be the crate's best (`none below N` says where the search stopped). A \
-         target is judged only where the reference's own error is at most {} of it.\n\n\
+         a time until it has reached the smallest target the reference judges (in the \
+         sense below), or down to a tolerance of {}, each fixed-step scheme from {} steps \
+         doubling until it reaches every target or its run that missed one already cost \
+         what the cheapest own pair spends there, after which it cannot be the crate's best \
+         (`none below N` says where the search stopped). A target is judged only where the \
+         reference's own error is at most {} of it.\n\n\
+         Every contender's runs go from cheap to dear, and a target counts as reached at the \
+         first run after which no dearer run of the same contender misses it, with at least \
+         one dearer run confirming it; the cost is interpolated between that run and the \
+         last one that missed. Far above round-off the error falls with the cost and this is \
+         the first run below the target. At the round-off floor it is not: one run's error \
+         can land below the trend by a cancellation of its roundings while the next \
+         tolerance's is above the target again, and a cost read off the first run below \
+         would be a draw of where a decade ladder's rungs happen to fall. The own pairs' \
+         Kepler ladders end at a tolerance of {own_last:.0e} and the peers' at {peer_last:.0e}, \
+         so a target an own pair first meets at {own_last:.0e} counts as not reached; the \
+         fixed steps' runs on the Kepler orbits are the order study's rungs, which end \
+         where that study sees the round-off floor (`details/order-rungs.md`), so a target \
+         a fixed step first meets on its last rung counts as not reached either. Where a \
+         contender meets a target only with the last run of its ladder, and that run costs \
+         less than what reached it for good, the outcome names it as unconfirmed.\n\n\
          A fixed step pays everywhere for the orbit's fastest part, an adaptive one only \
          there. Where the own pairs win, the reason is the equation: for `q'' = a(q)` a \
          Nyström method spends no stages on the velocity's own derivative, so DPRKN8(6) \
@@ -284,6 +318,8 @@ pub fn race_section(race: &RaceRecords) -> String {
         sci(NBODY_TOLERANCES[NBODY_TOLERANCES.len() - 1]),
         NBODY_FIRST_STEPS,
         REFERENCE_SHARE,
+        own_last = ADAPTIVE_TOLERANCES[ADAPTIVE_TOLERANCES.len() - 1],
+        peer_last = PEER_TOLERANCES[PEER_TOLERANCES.len() - 1],
     ));
     out.push_str(&race_table(&race.rows));
     out.push_str(&pericentre_lag_note(race));
@@ -297,7 +333,7 @@ pub fn race_section(race: &RaceRecords) -> String {
          divided by the digits it asks for (`-log10` of the target), for the cheapest own \
          pair at that target and for each peer, read off the same runs as the race. In \
          brackets, the same figure for the last run that missed the target and the first \
-         that reached it: where the error falls as the cost grows, the true cost lies \
+         that reached it for good: where the error falls as the cost grows, the true cost lies \
          between them (`<=` where the cheapest run already reached it).\n\n",
     );
     out.push_str(&digits_table(&race.digits));
@@ -316,8 +352,8 @@ pub fn race_section(race: &RaceRecords) -> String {
     out
 }
 
-/// Where IAS15 costs less than the crate's best, at which tolerance the
-/// crate's best pair first ends below that target, and the smallest error
+/// Where IAS15 costs less than the crate's best, from which tolerance the
+/// crate's best pair reaches that target for good, and the smallest error
 /// any run of the crate's pairs reached on the scene: figures, read off the
 /// same runs as the race.
 fn ias15_cheaper_note(race: &RaceRecords) -> String {
@@ -341,11 +377,8 @@ fn ias15_cheaper_note(race: &RaceRecords) -> String {
             .and_then(|row| row.pair.name);
         let first_below = best_pair.and_then(|name| {
             let ladder = pairs.iter().find(|l| l.contender == name)?;
-            let run = ladder
-                .points
-                .iter()
-                .find(|p| p.error.is_some_and(|e| e <= r.target))?;
-            Some((name, run.setting))
+            let run = *ladder.deciding(r.target).last()?;
+            Some((name, ladder.points[run].setting))
         });
         let smallest = pairs
             .iter()
@@ -360,7 +393,7 @@ fn ias15_cheaper_note(race: &RaceRecords) -> String {
         };
         out.push_str(&format!(
             "\nIAS15 costs less than the crate's best on `{scene}` at {target:.0e} ({ratio:.2}). \
-             The crate's best there, {name}, first ends below that target with its run at TOL \
+             The crate's best there, {name}, reaches that target for good from its run at TOL \
              {tol:.0e}, {decades:.0} decades tighter than the target, and the smallest error any \
              run of the crate's pairs reached there is {floor} ({who} at TOL {at:.0e}), {above:.1} \
              times below it.\n",
@@ -392,14 +425,21 @@ fn pericentre_lag_note(race: &RaceRecords) -> String {
     };
     let who = match row.pair.name.filter(|_| row.best().is_some()) {
         Some(pair) => format!(
-            "{pair}'s ladder has a run below {target:.0e}, but that target lies at the round-off \
+            "{pair}'s ladder reaches {target:.0e} for good, but that target lies at the round-off \
              floor: whether a run ends below it is decided by how its roundings fall, not by its \
-             tolerance, so a run at a neighbouring tolerance may end above it. The error at \
-             that level is a lag along the orbit."
+             tolerance. The error at that level is a lag along the orbit."
         ),
-        None => format!(
-            "no run reaches {target:.0e}, and the error at that level is a lag along the orbit."
-        ),
+        None => match row.smallest_error.filter(|&e| e <= target) {
+            Some(e) => format!(
+                "no ladder reaches {target:.0e} for good: runs end on both sides of it (the \
+                 smallest error of any run is {}), as they do where how a run's roundings fall \
+                 decides, not its tolerance. The error at that level is a lag along the orbit.",
+                sci(e)
+            ),
+            None => format!(
+                "no run reaches {target:.0e}, and the error at that level is a lag along the orbit."
+            ),
+        },
     };
     let u = f64::EPSILON / 2.0;
     let allowed = lag.energy_allowed(target);

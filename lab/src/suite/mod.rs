@@ -11,6 +11,7 @@ pub mod hard_cases;
 pub mod ias15;
 pub mod pericentre_lag;
 pub mod race;
+pub mod reached_for_good;
 pub mod round_off;
 pub mod work_precision;
 

@@ -9,7 +9,10 @@
 //! scenes have no exact solution, so their contenders are run here and
 //! judged by the phase-space distance at the end time to a reference state
 //! ([`NbodyReference`]); a target below what the reference resolves is
-//! marked as not judged.
+//! marked as not judged. Every contender's cost of a target is read off its
+//! runs as the cost of reaching it for good ([`crate::suite::reached_for_good`]):
+//! at the first run after which no dearer run of its ladder misses it, one
+//! dearer run confirming it.
 //!
 //! On the N-body scenes the search for the cheapest fixed-step scheme stops
 //! where it can no longer matter to the race: once a scheme's run that
@@ -24,6 +27,7 @@ use crate::peer::{IntegratorVisitor, PEERS};
 use crate::suite::adaptive::{AdaptiveRecords, INTEGRATORS, OWN_PAIRS};
 use crate::suite::dd_reference;
 use crate::suite::pericentre_lag::PericentreLag;
+use crate::suite::reached_for_good::{deciding_runs, met_only_by_last_run, reach_for_good};
 use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
 use serde::Serialize;
 use stepladder::internals::cost::step_time::time_run;
@@ -64,9 +68,10 @@ pub const NBODY_TOLERANCES: [f64; 14] = [
 
 /// The first of [`NBODY_TOLERANCES`] an adaptive ladder runs. The ladder
 /// goes a decade looser a run while its loosest run is already below the
-/// largest target, and a decade tighter a run until the error is below the
-/// smallest target the reference judges, or down to the list's last
-/// tolerance. It does not stop where the error seems to have stopped
+/// largest target, and a decade tighter a run until it has reached the
+/// smallest target the reference judges for good (a run below it and a
+/// tighter one that stays below, see [`crate::suite::reached_for_good`]), or
+/// down to the list's last tolerance. It does not stop where the error seems to have stopped
 /// falling: near the round-off floor the end error of one run can fall
 /// below the trend by a cancellation of its local errors and the next run's
 /// then looks like a floor (near 1e-15 the compensated pairs' end errors
@@ -350,23 +355,16 @@ impl RaceLadder {
             .collect()
     }
 
-    /// The evaluations to reach `target`.
+    /// The evaluations to reach `target` for good (see
+    /// [`crate::suite::reached_for_good`]).
     pub fn reach(&self, target: f64) -> Reach {
-        cost_to_reach(&self.data(), target)
+        reach_for_good(&self.data(), target)
     }
 
-    /// The indices of the runs that decide the cost of `target` (the first
-    /// at or below it and the one before), the only runs the time race needs.
-    fn deciding(&self, target: f64) -> Vec<usize> {
-        match self
-            .points
-            .iter()
-            .position(|p| p.error.is_some_and(|e| e <= target))
-        {
-            Some(0) => vec![0],
-            Some(k) => vec![k - 1, k],
-            None => Vec::new(),
-        }
+    /// The indices of the runs that decide the cost of `target`, the only
+    /// runs the time race needs.
+    pub fn deciding(&self, target: f64) -> Vec<usize> {
+        deciding_runs(&self.data(), target)
     }
 }
 
@@ -413,13 +411,15 @@ fn adaptive_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
         k -= 1;
         points.insert(0, run(NBODY_TOLERANCES[k]));
     }
+    let settled = |points: &[RacePoint]| {
+        let data: Vec<(f64, Option<f64>)> = points
+            .iter()
+            .map(|p| (p.evaluations as f64, p.error))
+            .collect();
+        reach_for_good(&data, smallest) != Reach::NotReached
+    };
     let mut k = first;
-    while k + 1 < NBODY_TOLERANCES.len()
-        && points
-            .last()
-            .and_then(|p| p.error)
-            .is_none_or(|e| e > smallest)
-    {
+    while k + 1 < NBODY_TOLERANCES.len() && !settled(&points) {
         k += 1;
         points.push(run(NBODY_TOLERANCES[k]));
     }
@@ -436,9 +436,9 @@ fn adaptive_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
 }
 
 /// The fixed-step contender's ladder: steps doubling from
-/// [`NBODY_FIRST_STEPS`] until every target is reached, or until every
-/// target not yet reached is one the run just made cannot beat `bounds`
-/// at (see the module documentation), or a run would exceed
+/// [`NBODY_FIRST_STEPS`] until every target is reached for good, or until
+/// every target not yet reached is one the run just made missed and cannot
+/// beat `bounds` at (see the module documentation), or a run would exceed
 /// [`NBODY_MAX_EVALUATIONS`].
 fn fixed_ladder<M: Scheme, S: Scene<D>, const D: usize>(
     scheme: &M,
@@ -459,16 +459,20 @@ fn fixed_ladder<M: Scheme, S: Scene<D>, const D: usize>(
             error,
         });
         let cost = evaluations as f64;
-        let open: Vec<usize> = (0..RACE_TARGETS.len())
-            .filter(|&i| {
-                !points
-                    .iter()
-                    .any(|p| p.error.is_some_and(|e| e <= RACE_TARGETS[i]))
-            })
-            .collect();
-        let hopeless = open
+        let data: Vec<(f64, Option<f64>)> = points
             .iter()
-            .all(|&i| bounds.get(i).copied().flatten().is_some_and(|b| cost >= b));
+            .map(|p| (p.evaluations as f64, p.error))
+            .collect();
+        let open: Vec<usize> = (0..RACE_TARGETS.len())
+            .filter(|&i| reach_for_good(&data, RACE_TARGETS[i]) == Reach::NotReached)
+            .collect();
+        // a target this run missed can only be reached by a dearer run, so
+        // at a cost of at least this one's; one this run met still needs a
+        // dearer run to confirm it, and its cost may lie below this one's
+        let hopeless = open.iter().all(|&i| {
+            error.is_none_or(|e| e > RACE_TARGETS[i])
+                && bounds.get(i).copied().flatten().is_some_and(|b| cost >= b)
+        });
         if open.is_empty() || hopeless || 2 * evaluations > NBODY_MAX_EVALUATIONS {
             break;
         }
@@ -530,6 +534,11 @@ pub struct RaceRow {
     /// The smallest error any contender's run reached (by evaluations; not
     /// kept in the race by time).
     pub smallest_error: Option<f64>,
+    /// The contenders, of either side, that meet the target only with the
+    /// last run of their ladder, and that run's cost: not reached for good,
+    /// for want of a dearer run (by evaluations; not kept in the race by
+    /// time).
+    pub unconfirmed: Vec<(&'static str, f64)>,
     /// The reference resolves the target (against an exact solution: its
     /// rounding in doubles, [`exact_rounding`], is at most
     /// [`REFERENCE_SHARE`] of the target).
@@ -676,7 +685,7 @@ fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> 
                         .iter()
                         .map(|p| (p.evaluations as f64, p.error))
                         .collect();
-                    cost_to_reach(&data, target)
+                    reach_for_good(&data, target)
                 })
         };
         for target in RACE_TARGETS {
@@ -689,7 +698,7 @@ fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> 
                         .iter()
                         .map(|p| (p.evaluations as f64, p.error))
                         .collect();
-                    (s.scheme, cost_to_reach(&data, target))
+                    (s.scheme, reach_for_good(&data, target))
                 })
                 .collect();
             let mut row = kepler_row(
@@ -700,10 +709,44 @@ fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> 
                 peers.iter().map(|l| l.reach(target)).collect(),
             );
             row.smallest_error = smallest;
+            let fixed_runs = w.schemes.iter().map(|s| {
+                let data: Vec<(f64, Option<f64>)> = s
+                    .global
+                    .iter()
+                    .map(|p| (p.evaluations as f64, p.error))
+                    .collect();
+                (s.scheme, data)
+            });
+            let own_runs = adaptive
+                .ladders
+                .iter()
+                .filter(|l| l.scene == scene)
+                .filter(|l| OWN_PAIRS.iter().any(|p| p.name() == l.integrator))
+                .map(|l| {
+                    let data: Vec<(f64, Option<f64>)> = l
+                        .points
+                        .iter()
+                        .map(|p| (p.evaluations as f64, p.error))
+                        .collect();
+                    (l.integrator, data)
+                });
+            let peer_runs = peers.iter().map(|l| (l.contender, l.data()));
+            row.unconfirmed = unconfirmed(fixed_runs.chain(own_runs).chain(peer_runs), target);
             rows.push(row);
         }
     }
     rows
+}
+
+/// The contenders among `runs` that meet `target` only with the last run of
+/// their ladder, and that run's cost.
+fn unconfirmed(
+    runs: impl IntoIterator<Item = (&'static str, Vec<(f64, Option<f64>)>)>,
+    target: f64,
+) -> Vec<(&'static str, f64)> {
+    runs.into_iter()
+        .filter_map(|(name, data)| Some((name, met_only_by_last_run(&data, target)?)))
+        .collect()
 }
 
 /// A Kepler row, in evaluations or seconds: the fixed step's entry, each
@@ -727,6 +770,7 @@ fn kepler_row(
         pair: entry(&pairs),
         peers,
         smallest_error: None,
+        unconfirmed: Vec::new(),
         judged: exact_rounding(scene).is_some_and(|e| e <= REFERENCE_SHARE * target),
     }
 }
@@ -742,7 +786,19 @@ fn nbody_rows(records: &[NbodyRecord]) -> Vec<RaceRow> {
                     .map(|l| (l.contender, l.reach(target)))
                     .collect()
             };
-            let fixed = entry(&named(&r.fixed));
+            // the search stops for a target once no scheme can beat the
+            // bound there, so a scheme that reached it only at a cost above
+            // the bound (its ladder went on for another target) is not the
+            // cheapest fixed step: others were not searched that far
+            let fixed = Some(entry(&named(&r.fixed)))
+                .filter(|e| {
+                    let bound = r.fixed_bounds[i].unwrap_or(f64::INFINITY);
+                    e.reach.cost().is_none_or(|c| c < bound)
+                })
+                .unwrap_or(Entry {
+                    name: None,
+                    reach: Reach::NotReached,
+                });
             let pairs: Vec<(&'static str, Reach)> = named(&r.adaptive)[..OWN_PAIRS.len()].to_vec();
             rows.push(RaceRow {
                 scene: r.reference.scene,
@@ -761,6 +817,13 @@ fn nbody_rows(records: &[NbodyRecord]) -> Vec<RaceRow> {
                     .flat_map(|l| &l.points)
                     .filter_map(|p| p.error)
                     .reduce(f64::min),
+                unconfirmed: unconfirmed(
+                    r.adaptive
+                        .iter()
+                        .chain(&r.fixed)
+                        .map(|l| (l.contender, l.data())),
+                    target,
+                ),
                 judged: r.reference.judges(target),
             });
         }
@@ -926,7 +989,8 @@ pub fn race(
 ///
 /// The interval: the runs are cheapest first, and where the error falls as
 /// the cost grows, the cost of the target lies between the last run that
-/// missed it and the first that reached it; divided by `d`, those bound the
+/// missed it and the first that reached it for good (see
+/// [`crate::suite::reached_for_good`]); divided by `d`, those bound the
 /// figure. Interpolating between them on log-log axes gives the estimate.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct DigitCost {
@@ -935,22 +999,22 @@ pub struct DigitCost {
     /// From the last run that missed the target; `None` when the first run
     /// already reached it (the figure is then at most `high`).
     pub low: Option<f64>,
-    /// From the first run that reached it.
+    /// From the first run that reached it for good.
     pub high: f64,
 }
 
 /// A contender's cost per digit at `target`, from its `(evaluations,
-/// error)` runs, cheapest first; `None` where no run reaches the target.
+/// error)` runs, cheapest first; `None` where the target is not reached for
+/// good.
 pub fn digit_cost(data: &[(f64, Option<f64>)], target: f64) -> Option<DigitCost> {
     let digits = -target.log10();
-    let k = data
-        .iter()
-        .position(|&(_, e)| e.is_some_and(|e| e <= target))?;
-    let cost = cost_to_reach(data, target).cost()?;
-    let low = k
-        .checked_sub(1)
-        .map(|j| data[j].0)
-        .filter(|_| matches!(cost_to_reach(data, target), Reach::Interpolated(_)));
+    let reach = reach_for_good(data, target);
+    let cost = reach.cost()?;
+    let runs = deciding_runs(data, target);
+    let k = *runs.last()?;
+    let low = (runs.len() == 2)
+        .then(|| data[runs[0]].0)
+        .filter(|_| matches!(reach, Reach::Interpolated(_)));
     Some(DigitCost {
         per_digit: cost / digits,
         low: low.map(|c| c / digits),
@@ -1159,7 +1223,7 @@ pub fn race_times(
                         .filter(|(t, _)| t.is_finite())
                         .map(|(&t, p)| (t, p.error))
                         .collect();
-                    cost_to_reach(&data, target)
+                    reach_for_good(&data, target)
                 })
         };
         // the peers' runs that decide a target, timed here one at a time
@@ -1179,17 +1243,37 @@ pub fn race_times(
         };
         for (k, target) in RACE_TARGETS.into_iter().enumerate() {
             // the time-to-target table stops at the work study's targets;
-            // beyond them the fixed steps are not timed
-            let fixed = w.fastest_global.iter().find(|f| f.target == target).map_or(
-                Entry {
-                    name: None,
-                    reach: Reach::NotReached,
-                },
-                |f| Entry {
-                    name: f.scheme,
-                    reach: f.seconds,
-                },
-            );
+            // beyond them the fixed steps are not timed. It reads each
+            // scheme's first rung below a target: a scheme that does not
+            // reach the target for good on the same rungs is not counted
+            let for_good = |scheme: Option<&str>| {
+                let rungs = work
+                    .iter()
+                    .find(|r| r.scene == scene)
+                    .and_then(|r| r.schemes.iter().find(|s| Some(s.scheme) == scheme));
+                rungs.is_some_and(|s| {
+                    let data: Vec<(f64, Option<f64>)> = s
+                        .global
+                        .iter()
+                        .map(|p| (p.evaluations as f64, p.error))
+                        .collect();
+                    reach_for_good(&data, target) != Reach::NotReached
+                })
+            };
+            let fixed = w
+                .fastest_global
+                .iter()
+                .find(|f| f.target == target && for_good(f.scheme))
+                .map_or(
+                    Entry {
+                        name: None,
+                        reach: Reach::NotReached,
+                    },
+                    |f| Entry {
+                        name: f.scheme,
+                        reach: f.seconds,
+                    },
+                );
             rows.push(kepler_row(
                 scene,
                 target,
@@ -1230,11 +1314,25 @@ pub fn race_times(
             rows.push(RaceRow {
                 scene: r.reference.scene,
                 target,
-                fixed: entry(&named(&r.fixed, &fixed)),
+                // only where the race by evaluations found the cheapest
+                // fixed step (see `nbody_rows`)
+                fixed: records
+                    .rows
+                    .iter()
+                    .find(|x| x.scene == r.reference.scene && x.target == target)
+                    .filter(|x| x.fixed.name.is_some())
+                    .map_or(
+                        Entry {
+                            name: None,
+                            reach: Reach::NotReached,
+                        },
+                        |_| entry(&named(&r.fixed, &fixed)),
+                    ),
                 fixed_searched_to: None,
                 pair: entry(&named(&r.adaptive[..pairs], &adaptive[..pairs])),
                 peers: adaptive[pairs..].iter().map(|s| s[k]).collect(),
                 smallest_error: None,
+                unconfirmed: Vec::new(),
                 judged: r.reference.judges(target),
             });
         }

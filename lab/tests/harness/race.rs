@@ -14,6 +14,23 @@ use stepladder_lab::suite::race::{
     pleiades_published_accuracy,
 };
 
+/// A target reached for good, read off the errors directly: after the last
+/// run that misses it (above it, or not a number), at least two runs meet it.
+fn settled(errors: &[Option<f64>], target: f64) -> bool {
+    let after = errors
+        .iter()
+        .rposition(|e| e.is_some_and(|e| e.is_nan() || e > target))
+        .map_or(0, |j| j + 1);
+    errors[after..]
+        .iter()
+        .filter(|e| e.is_some_and(|e| e <= target))
+        .count()
+        >= 2
+}
+
+/// One contender's errors, cheapest run first.
+type Errors = Vec<Option<f64>>;
+
 fn smallest_target() -> f64 {
     RACE_TARGETS.iter().copied().fold(f64::INFINITY, f64::min)
 }
@@ -73,6 +90,60 @@ fn the_crate_needs_no_more_evaluations_than_any_peer_where_judged() {
             row.target,
             PEERS[peer].name()
         );
+    }
+}
+
+/// Every cost the race by evaluations gives, of the crate's best pair and
+/// of each peer, is of a target the contender's own runs reach for good,
+/// read off their errors here; and a peer whose runs settle a target has a
+/// cost there.
+#[test]
+fn every_race_cost_is_of_a_target_reached_for_good() {
+    let suite = super::common::suite();
+    for row in &suite.race.rows {
+        let who = format!("{} {:e}", row.scene, row.target);
+        // each contender's errors, cheapest run first
+        let (pairs, peers): (Vec<(&str, Errors)>, Vec<Errors>) = if let Some(r) = suite
+            .race
+            .nbody
+            .iter()
+            .find(|r| r.reference.scene == row.scene)
+        {
+            let all: Vec<(&str, Vec<Option<f64>>)> = r
+                .adaptive
+                .iter()
+                .map(|l| (l.contender, l.points.iter().map(|p| p.error).collect()))
+                .collect();
+            let (own, others) = all.split_at(all.len() - PEERS.len());
+            (own.to_vec(), others.iter().map(|x| x.1.clone()).collect())
+        } else {
+            let own = suite
+                .adaptive
+                .ladders
+                .iter()
+                .filter(|l| l.scene == row.scene)
+                .map(|l| (l.integrator, l.points.iter().map(|p| p.error).collect()))
+                .collect();
+            let work = suite.work.iter().find(|w| w.scene == row.scene).unwrap();
+            let peers = work
+                .peers
+                .iter()
+                .map(|p| p.global.iter().map(|x| x.error).collect())
+                .collect();
+            (own, peers)
+        };
+        if let Some(name) = row.pair.name {
+            let (_, e) = pairs.iter().find(|(n, _)| *n == name).unwrap();
+            assert!(settled(e, row.target), "{who}: {name} {e:?}");
+        }
+        assert_eq!(peers.len(), row.peers.len(), "{who}");
+        for (e, reach) in peers.iter().zip(&row.peers) {
+            assert_eq!(
+                reach.cost().is_some(),
+                settled(e, row.target),
+                "{who}: {e:?}"
+            );
+        }
     }
 }
 
@@ -197,14 +268,14 @@ fn the_nbody_adaptive_ladders_bracket_the_targets_or_stop_at_their_floor() {
                 .filter(|&t| record.reference.judges(t))
                 .fold(f64::INFINITY, f64::min);
             let last = ladder.points.last().unwrap();
-            if last.error.is_none_or(|e| e > smallest) {
+            let errors: Vec<Option<f64>> = ladder.points.iter().map(|p| p.error).collect();
+            if !settled(&errors, smallest) {
                 let tightest = last.setting == NBODY_TOLERANCES[NBODY_TOLERANCES.len() - 1];
                 assert!(tightest, "{who}: {:?}", ladder.points);
             } else {
-                // and it stops at the first run below it
-                let before = &ladder.points[..ladder.points.len() - 1];
+                // and it stops at the run that settles it
                 assert!(
-                    before.iter().all(|p| p.error.is_none_or(|e| e > smallest)),
+                    !settled(&errors[..errors.len() - 1], smallest),
                     "{who}: {:?}",
                     ladder.points
                 );
@@ -214,10 +285,11 @@ fn the_nbody_adaptive_ladders_bracket_the_targets_or_stop_at_their_floor() {
 }
 
 /// The search for a fixed-step scheme on an N-body scene doubles the steps
-/// from the first rung, and gives up on a target only once the run that
-/// missed it cost at least the bound (the cheapest own pair's cost there),
-/// or the next run would pass the cap: any later run would cost more, so
-/// the scheme could not have been the crate's best at that target.
+/// from the first rung, and gives up on a target not reached for good only
+/// once its last run missed it and cost at least the bound (the cheapest own
+/// pair's cost there), or the next run would pass the cap: any later run
+/// would cost more, so the scheme could not have been the crate's best at
+/// that target.
 #[test]
 fn the_fixed_step_search_stops_only_where_a_scheme_cannot_win() {
     for record in &super::common::suite().race.nbody {
@@ -229,12 +301,9 @@ fn the_fixed_step_search_stops_only_where_a_scheme_cannot_win() {
             }
             let last = ladder.points.last().unwrap();
             let capped = 2 * last.evaluations > NBODY_MAX_EVALUATIONS;
+            let errors: Vec<Option<f64>> = ladder.points.iter().map(|p| p.error).collect();
             for (i, &target) in RACE_TARGETS.iter().enumerate() {
-                let reached = ladder
-                    .points
-                    .iter()
-                    .any(|p| p.error.is_some_and(|e| e <= target));
-                if reached || capped {
+                if settled(&errors, target) || capped {
                     continue;
                 }
                 let bound = record.fixed_bounds[i].expect("every scene has a bound");
@@ -242,6 +311,10 @@ fn the_fixed_step_search_stops_only_where_a_scheme_cannot_win() {
                     last.evaluations as f64 >= bound,
                     "{who}: stopped at {} evaluations, short of {bound} for {target:e}",
                     last.evaluations
+                );
+                assert!(
+                    last.error.is_none_or(|e| e > target),
+                    "{who}: stopped on a run that met {target:e}, before a dearer one confirmed it"
                 );
             }
         }

@@ -10,4 +10,5 @@ mod dd_reference;
 mod held_out;
 mod markdown;
 mod peer;
+mod reached_for_good;
 mod scenes;
