@@ -264,7 +264,8 @@ pub fn race_section(race: &RaceRecords) -> String {
          pairs on one side, each peer on the other. On the Kepler orbits the error is the \
          largest phase-space error over the run against the exact solution (the work \
          study's rungs, the tolerance ladders' runs for the own pairs and the peers' runs \
-         of the work study, whose tolerances go a decade further), and a target is judged \
+         of the work study, the own pairs' carried on to the peers' tightest tolerance), \
+         and a target is judged \
          where the exact solution itself is within a tenth of it: it is the orbit of the \
          doubles the integrators are given (`GM` and the initial state as doubles, which \
          on the eccentric orbit shift the mean motion by 3.6e-16 of itself from the ideal \
@@ -277,23 +278,25 @@ pub fn race_section(race: &RaceRecords) -> String {
          a reference state, each adaptive contender run from a tolerance of {} a decade at \
          a time until it has reached the smallest target the reference judges (in the \
          sense below), or down to a tolerance of {}, each fixed-step scheme from {} steps \
-         doubling until it reaches every target or its run that missed one already cost \
+         doubling until it reaches every target for good or its run that missed one already cost \
          what the cheapest own pair spends there, after which it cannot be the crate's best \
          (`none below N` says where the search stopped). A target is judged only where the \
          reference's own error is at most {} of it.\n\n\
          Every contender's runs go from cheap to dear, and a target counts as reached at the \
-         first run after which no dearer run of the same contender misses it, with at least \
-         one dearer run confirming it; the cost is interpolated between that run and the \
-         last one that missed. Far above round-off the error falls with the cost and this is \
+         first run that meets it after which no dearer run of the same contender misses it, \
+         with at least one dearer run confirming it; the cost is interpolated between that \
+         run and the last one that missed (`<=` where no run before it measured an error). \
+         Far above round-off the error falls with the cost and this is \
          the first run below the target. At the round-off floor it is not: one run's error \
          can land below the trend by a cancellation of its roundings while the next \
          tolerance's is above the target again, and a cost read off the first run below \
-         would be a draw of where a decade ladder's rungs happen to fall. The own pairs' \
-         Kepler ladders end at a tolerance of {own_last:.0e} and the peers' at {peer_last:.0e}, \
-         so a target an own pair first meets at {own_last:.0e} counts as not reached; the \
-         fixed steps' runs on the Kepler orbits are the order study's rungs, which end \
-         where that study sees the round-off floor (`details/order-rungs.md`), so a target \
-         a fixed step first meets on its last rung counts as not reached either. Where a \
+         would be a draw of where a decade ladder's rungs happen to fall. So that both \
+         sides are read over the same tolerances, the own pairs' Kepler ladders (which end \
+         at {own_last:.0e}) are carried on here to the peers' tightest, {peer_last:.0e}. The \
+         fixed steps' runs on the Kepler orbits are the work study's rungs, which stop at \
+         the first rung below its smallest target, 1e-12, or where the error no longer falls \
+         as the order promises, so a target a fixed step first meets on its last rung counts \
+         as not reached. Where a \
          contender meets a target only with the last run of its ladder, and that run costs \
          less than what reached it for good, the outcome names it as unconfirmed.\n\n\
          A fixed step pays everywhere for the orbit's fastest part, an adaptive one only \
@@ -473,13 +476,16 @@ pub fn timing_section(rows: &[RaceRow]) -> String {
         "\n### The race by time\n\nThe race of the deterministic part, by wall time, \
          interpolated to each target like the evaluations: the own pairs on the Kepler \
          orbits from their tolerance ladders (each tolerance's run timed whole after the \
-         ladders, one at a time, fastest of several); every other adaptive run that \
+         ladders, one at a time, fastest of several, and the runs the race carried the \
+         ladders on with timed the same way where they decide a target); every other adaptive run that \
          decides a target (the peers' on the Kepler orbits, every contender's on the \
          N-body scenes) timed the same way, set-up and output included; the fixed steps on \
-         the Kepler orbits from the time-to-target table, on the N-body scenes their runs \
+         the Kepler orbits at their evaluations times their measured time per evaluation \
+         (as in the time-to-target table), on the N-body scenes their runs \
          that decide a target timed whole. A fixed step shown as `-` was not searched \
-         beyond the own pair's evaluations (see the race by evaluations), or, at 1e-14 on \
-         the Kepler orbits, not timed: the time-to-target table stops at 1e-12.\n\n",
+         beyond the own pair's evaluations (see the race by evaluations), or reaches no \
+         target for good on its runs (on the Kepler orbits the work study's rungs end at \
+         the first below 1e-12).\n\n",
     );
     out.push_str(&rows_table(rows, Unit::Seconds));
     out

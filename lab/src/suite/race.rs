@@ -11,8 +11,8 @@
 //! ([`NbodyReference`]); a target below what the reference resolves is
 //! marked as not judged. Every contender's cost of a target is read off its
 //! runs as the cost of reaching it for good ([`crate::suite::reached_for_good`]):
-//! at the first run after which no dearer run of its ladder misses it, one
-//! dearer run confirming it.
+//! at the first run that meets it after which no dearer run of its ladder
+//! misses it, one dearer run confirming it.
 //!
 //! On the N-body scenes the search for the cheapest fixed-step scheme stops
 //! where it can no longer matter to the race: once a scheme's run that
@@ -23,11 +23,13 @@
 //! reaches a target, the fixed steps are searched as far as the pairs' most
 //! expensive run went.
 
-use crate::peer::{IntegratorVisitor, PEERS};
+use crate::peer::{IntegratorVisitor, PEER_TOLERANCES, PEERS};
 use crate::suite::adaptive::{AdaptiveRecords, INTEGRATORS, OWN_PAIRS};
 use crate::suite::dd_reference;
 use crate::suite::pericentre_lag::PericentreLag;
-use crate::suite::reached_for_good::{deciding_runs, met_only_by_last_run, reach_for_good};
+use crate::suite::reached_for_good::{
+    deciding_runs, met_only_by_last_run, met_since_last_miss, reach_for_good,
+};
 use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
 use serde::Serialize;
 use stepladder::internals::cost::step_time::time_run;
@@ -466,11 +468,12 @@ fn fixed_ladder<M: Scheme, S: Scene<D>, const D: usize>(
         let open: Vec<usize> = (0..RACE_TARGETS.len())
             .filter(|&i| reach_for_good(&data, RACE_TARGETS[i]) == Reach::NotReached)
             .collect();
-        // a target this run missed can only be reached by a dearer run, so
-        // at a cost of at least this one's; one this run met still needs a
-        // dearer run to confirm it, and its cost may lie below this one's
+        // a target no run has met since the last miss can only be reached
+        // from a dearer run, at a cost of at least this one's; one met since
+        // still needs a dearer run to confirm it, and its cost may lie below
+        // this one's
         let hopeless = open.iter().all(|&i| {
-            error.is_none_or(|e| e > RACE_TARGETS[i])
+            !met_since_last_miss(&data, RACE_TARGETS[i])
                 && bounds.get(i).copied().flatten().is_some_and(|b| cost >= b)
         });
         if open.is_empty() || hopeless || 2 * evaluations > NBODY_MAX_EVALUATIONS {
@@ -580,6 +583,10 @@ pub struct RaceRecords {
     pub ias15: Vec<crate::suite::ias15::Ias15Row>,
     /// Why the eccentric orbit's smallest target is out of reach.
     pub pericentre_lag: Option<PericentreLag>,
+    /// The own pairs' runs on the Kepler orbits, by scene: each pair's
+    /// tolerance ladder carried on to the peers' tightest tolerance
+    /// ([`kepler_pair_ladders`]).
+    pub kepler_pairs: Vec<(&'static str, RaceLadder)>,
 }
 
 /// The cheapest of the named reaches.
@@ -596,9 +603,9 @@ fn entry(candidates: &[(&'static str, Reach)]) -> Entry {
     }
 }
 
-/// The peers' runs on a Kepler scene in the work study (tolerances down to
-/// 1e-15, one more decade than the tolerance ladders, so that no target a
-/// peer could reach is denied it), in the order of [`PEERS`].
+/// The peers' runs on a Kepler scene in the work study (at every one of
+/// [`PEER_TOLERANCES`], so that no target a peer could reach is denied it),
+/// in the order of [`PEERS`].
 fn kepler_peers(w: &WorkRecord) -> Vec<RaceLadder> {
     w.peers
         .iter()
@@ -651,7 +658,7 @@ pub fn exact_rounding(scene: &str) -> Option<f64> {
 /// the own pairs from their tolerance ladders, the peers from the work
 /// study, each read off its runs at every target (the work study's own
 /// targets stop at 1e-12).
-fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> {
+fn kepler_rows(work: &[WorkRecord], pairs: &[(&'static str, RaceLadder)]) -> Vec<RaceRow> {
     let mut rows = Vec::new();
     for scene in KEPLER_SCENES {
         let Some(w) = work.iter().find(|w| w.scene == scene) else {
@@ -665,28 +672,19 @@ fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> 
             .iter()
             .flat_map(|s| s.global.iter().map(|p| p.error))
             .chain(
-                adaptive
-                    .ladders
+                pairs
                     .iter()
-                    .filter(|l| l.scene == scene)
-                    .flat_map(|l| l.points.iter().map(|p| p.error)),
+                    .filter(|(s, _)| *s == scene)
+                    .flat_map(|(_, l)| l.points.iter().map(|p| p.error)),
             )
             .chain(peers.iter().flat_map(|l| l.points.iter().map(|p| p.error)))
             .flatten()
             .reduce(f64::min);
         let ladder_reach = |name: &str, target: f64| {
-            adaptive
-                .ladders
+            pairs
                 .iter()
-                .find(|l| l.scene == scene && l.integrator == name)
-                .map_or(Reach::NotReached, |l| {
-                    let data: Vec<(f64, Option<f64>)> = l
-                        .points
-                        .iter()
-                        .map(|p| (p.evaluations as f64, p.error))
-                        .collect();
-                    reach_for_good(&data, target)
-                })
+                .find(|(s, l)| *s == scene && l.contender == name)
+                .map_or(Reach::NotReached, |(_, l)| l.reach(target))
         };
         for target in RACE_TARGETS {
             let schemes: Vec<(&'static str, Reach)> = w
@@ -717,19 +715,10 @@ fn kepler_rows(work: &[WorkRecord], adaptive: &AdaptiveRecords) -> Vec<RaceRow> 
                     .collect();
                 (s.scheme, data)
             });
-            let own_runs = adaptive
-                .ladders
+            let own_runs = pairs
                 .iter()
-                .filter(|l| l.scene == scene)
-                .filter(|l| OWN_PAIRS.iter().any(|p| p.name() == l.integrator))
-                .map(|l| {
-                    let data: Vec<(f64, Option<f64>)> = l
-                        .points
-                        .iter()
-                        .map(|p| (p.evaluations as f64, p.error))
-                        .collect();
-                    (l.integrator, data)
-                });
+                .filter(|(s, _)| *s == scene)
+                .map(|(_, l)| (l.contender, l.data()));
             let peer_runs = peers.iter().map(|l| (l.contender, l.data()));
             row.unconfirmed = unconfirmed(fixed_runs.chain(own_runs).chain(peer_runs), target);
             rows.push(row);
@@ -786,26 +775,31 @@ fn nbody_rows(records: &[NbodyRecord]) -> Vec<RaceRow> {
                     .map(|l| (l.contender, l.reach(target)))
                     .collect()
             };
+            let pairs: Vec<(&'static str, Reach)> = named(&r.adaptive)[..OWN_PAIRS.len()].to_vec();
+            let pair = entry(&pairs);
             // the search stops for a target once no scheme can beat the
-            // bound there, so a scheme that reached it only at a cost above
-            // the bound (its ladder went on for another target) is not the
-            // cheapest fixed step: others were not searched that far
+            // bound there, the cheapest own pair's cost, so a scheme that
+            // reached it only at a cost above that bound (its ladder went
+            // on for another target) is not the cheapest fixed step: others
+            // were not searched that far. Where no own pair reaches the
+            // target, a fixed step that does is the crate's best, and stays
             let fixed = Some(entry(&named(&r.fixed)))
                 .filter(|e| {
-                    let bound = r.fixed_bounds[i].unwrap_or(f64::INFINITY);
-                    e.reach.cost().is_none_or(|c| c < bound)
+                    let bound = r.fixed_bounds[i].filter(|_| pair.name.is_some());
+                    e.reach
+                        .cost()
+                        .is_none_or(|c| c < bound.unwrap_or(f64::INFINITY))
                 })
                 .unwrap_or(Entry {
                     name: None,
                     reach: Reach::NotReached,
                 });
-            let pairs: Vec<(&'static str, Reach)> = named(&r.adaptive)[..OWN_PAIRS.len()].to_vec();
             rows.push(RaceRow {
                 scene: r.reference.scene,
                 target,
                 fixed,
                 fixed_searched_to: r.fixed_bounds[i].filter(|_| fixed.name.is_none()),
-                pair: entry(&pairs),
+                pair,
                 peers: r.adaptive[OWN_PAIRS.len()..]
                     .iter()
                     .map(|l| l.reach(target))
@@ -970,9 +964,10 @@ pub fn race(
     adaptive: &AdaptiveRecords,
     nbody: Vec<NbodyRecord>,
 ) -> RaceRecords {
-    let mut rows = kepler_rows(work, adaptive);
+    let kepler_pairs = kepler_pair_ladders(adaptive);
+    let mut rows = kepler_rows(work, &kepler_pairs);
     rows.extend(nbody_rows(&nbody));
-    let digits = digit_rows(&rows, work, adaptive, &nbody);
+    let digits = digit_rows(&rows, work, &kepler_pairs, &nbody);
     let ias15 = crate::suite::ias15::rows(&nbody, &rows);
     RaceRecords {
         rows,
@@ -980,6 +975,102 @@ pub fn race(
         digits,
         ias15,
         pericentre_lag: PericentreLag::measure(&KeplerEccentric::default()),
+        kepler_pairs,
+    }
+}
+
+/// The own pairs' ladders on the Kepler orbits for the race: each pair's
+/// tolerance ladder (whose tolerances end a decade or two before the
+/// peers') carried on at the rest of [`PEER_TOLERANCES`], each run judged as
+/// the ladders judge theirs, so that both sides of the race are read over
+/// the same tolerances. A target counts only once a dearer run confirms it
+/// ([`crate::suite::reached_for_good`]): over a shorter span a pair would be
+/// spared the runs that could take a target back, and denied the one that
+/// could confirm its last.
+pub fn kepler_pair_ladders(adaptive: &AdaptiveRecords) -> Vec<(&'static str, RaceLadder)> {
+    let mut out = Vec::new();
+    for scene in KEPLER_SCENES {
+        let Some(any) = AnyScene::all().into_iter().find(|s| s.meta().id == scene) else {
+            continue;
+        };
+        for pair in OWN_PAIRS {
+            let Some(l) = adaptive
+                .ladders
+                .iter()
+                .find(|l| l.scene == scene && l.integrator == pair.name())
+            else {
+                continue;
+            };
+            let mut points: Vec<RacePoint> = l
+                .points
+                .iter()
+                .map(|p| RacePoint {
+                    setting: p.tolerance,
+                    evaluations: p.evaluations,
+                    error: p.error,
+                })
+                .collect();
+            let last = points.last().map_or(f64::INFINITY, |p| p.setting);
+            for tol in PEER_TOLERANCES.into_iter().filter(|&t| t < last) {
+                points.push(pair.visit(ExactRun(&any, l.t_end, tol)));
+            }
+            out.push((
+                scene,
+                RaceLadder {
+                    contender: l.integrator,
+                    points,
+                    last_end: None,
+                },
+            ));
+        }
+    }
+    out
+}
+
+/// One run of an adaptive integrator on a scene with an exact solution,
+/// judged as a tolerance ladder judges its runs: the largest phase-space
+/// error over the run against the exact solution, where the run reaches
+/// its end (a NaN anywhere makes it no measurement).
+struct ExactRun<'a>(&'a AnyScene, f64, f64);
+impl IntegratorVisitor for ExactRun<'_> {
+    type Output = RacePoint;
+    fn visit<I: AdaptiveIntegrator>(self, integrator: &I) -> RacePoint {
+        self.0.visit(ExactRunOn(integrator, self.1, self.2))
+    }
+}
+
+struct ExactRunOn<'a, I>(&'a I, f64, f64);
+impl<I: AdaptiveIntegrator> SceneVisitor for ExactRunOn<'_, I> {
+    type Output = RacePoint;
+    fn visit<S: Scene<D> + Clone + Send + Sync + 'static, const D: usize>(
+        self,
+        scene: &S,
+    ) -> RacePoint {
+        let (t_end, tol) = (self.1, self.2);
+        let run = self.0.run(scene, t_end, tol).ok();
+        let error = run
+            .as_ref()
+            .filter(|r| r.end == RunEnd::Reached)
+            .and_then(|r| {
+                let worst = r
+                    .trajectory
+                    .iter()
+                    .map(|(t, s)| {
+                        scene
+                            .exact(*t)
+                            .map_or(f64::NAN, |x| scene.phase_distance(s, &x))
+                    })
+                    .fold(
+                        0.0,
+                        |m: f64, d| if d.is_nan() { f64::NAN } else { m.max(d) },
+                    );
+                worst.is_finite().then_some(worst)
+            });
+        RacePoint {
+            setting: tol,
+            evaluations: run.map_or(0, |r| r.evaluations),
+            error,
+        }
     }
 }
 
@@ -1046,7 +1137,7 @@ type Runs = Vec<(f64, Option<f64>)>;
 fn digit_rows(
     rows: &[RaceRow],
     work: &[WorkRecord],
-    adaptive: &AdaptiveRecords,
+    kepler_pairs: &[(&'static str, RaceLadder)],
     nbody: &[NbodyRecord],
 ) -> Vec<DigitRow> {
     let points = |l: &RaceLadder| l.data();
@@ -1061,16 +1152,10 @@ fn digit_rows(
                         .collect()
                 } else {
                     let own = OWN_PAIRS.iter().map(|p| {
-                        let data = adaptive
-                            .ladders
+                        let data = kepler_pairs
                             .iter()
-                            .find(|l| l.scene == row.scene && l.integrator == p.name())
-                            .map(|l| {
-                                l.points
-                                    .iter()
-                                    .map(|x| (x.evaluations as f64, x.error))
-                                    .collect()
-                            })
+                            .find(|(s, l)| *s == row.scene && l.contender == p.name())
+                            .map(|(_, l)| points(l))
                             .unwrap_or_default();
                         (p.name(), data)
                     });
@@ -1210,24 +1295,42 @@ pub fn race_times(
         let Some(w) = timings.iter().find(|w| w.scene == scene) else {
             continue;
         };
-        let timed = |name: &str, target: f64| {
-            adaptive
-                .ladders
-                .iter()
-                .zip(&adaptive.point_seconds)
-                .find(|(l, _)| l.scene == scene && l.integrator == name)
-                .map_or(Reach::NotReached, |(l, s)| {
-                    let data: Vec<(f64, Option<f64>)> = s
+        let any = AnyScene::all().into_iter().find(|s| s.meta().id == scene);
+        // the own pairs' runs that decide a target: timed with the ladders
+        // where the ladder has the run, timed here where the race carried
+        // the ladder on
+        let own: Vec<(&'static str, Vec<Reach>)> = records
+            .kepler_pairs
+            .iter()
+            .filter(|(s, _)| *s == scene)
+            .filter_map(|(_, l)| {
+                let (ladder, seconds) = adaptive
+                    .ladders
+                    .iter()
+                    .zip(&adaptive.point_seconds)
+                    .find(|(x, _)| x.scene == scene && x.integrator == l.contender)?;
+                let pair = OWN_PAIRS.iter().find(|p| p.name() == l.contender)?;
+                let any = any.as_ref()?;
+                let reaches = seconds_to_reach(l, |x| {
+                    ladder
+                        .points
                         .iter()
-                        .zip(&l.points)
-                        .filter(|(t, _)| t.is_finite())
-                        .map(|(&t, p)| (t, p.error))
-                        .collect();
-                    reach_for_good(&data, target)
-                })
+                        .zip(seconds)
+                        .find(|(p, _)| p.tolerance == x.setting)
+                        .map_or_else(
+                            || pair.visit(TimeAdaptive(any, ladder.t_end, x.setting)),
+                            |(_, &t)| t,
+                        )
+                });
+                Some((l.contender, reaches))
+            })
+            .collect();
+        let timed = |name: &str, k: usize| {
+            own.iter()
+                .find(|(n, _)| *n == name)
+                .map_or(Reach::NotReached, |(_, r)| r[k])
         };
         // the peers' runs that decide a target, timed here one at a time
-        let any = AnyScene::all().into_iter().find(|s| s.meta().id == scene);
         let peers: Vec<Vec<Reach>> = match (work.iter().find(|w| w.scene == scene), any) {
             (Some(record), Some(any)) => {
                 let t_end = record.t_end;
@@ -1242,43 +1345,37 @@ pub fn race_times(
             _ => Vec::new(),
         };
         for (k, target) in RACE_TARGETS.into_iter().enumerate() {
-            // the time-to-target table stops at the work study's targets;
-            // beyond them the fixed steps are not timed. It reads each
-            // scheme's first rung below a target: a scheme that does not
-            // reach the target for good on the same rungs is not counted
-            let for_good = |scheme: Option<&str>| {
-                let rungs = work
-                    .iter()
-                    .find(|r| r.scene == scene)
-                    .and_then(|r| r.schemes.iter().find(|s| Some(s.scheme) == scheme));
-                rungs.is_some_and(|s| {
-                    let data: Vec<(f64, Option<f64>)> = s
-                        .global
+            // a scheme's time is its evaluations at its measured time per
+            // evaluation (as in the work study's time to target), read off
+            // the same rungs and by the same rule as the race by evaluations
+            let fixed = match work.iter().find(|r| r.scene == scene) {
+                Some(record) => {
+                    let candidates: Vec<(&'static str, Reach)> = record
+                        .schemes
                         .iter()
-                        .map(|p| (p.evaluations as f64, p.error))
+                        .filter_map(|s| {
+                            let t = w.schemes.iter().find(|t| t.scheme == s.scheme)?;
+                            let data: Vec<(f64, Option<f64>)> = s
+                                .global
+                                .iter()
+                                .map(|p| (p.evaluations as f64, p.error))
+                                .collect();
+                            let reach = reach_for_good(&data, target);
+                            Some((s.scheme, reach.scaled(t.ns_per_evaluation * 1e-9)))
+                        })
                         .collect();
-                    reach_for_good(&data, target) != Reach::NotReached
-                })
+                    entry(&candidates)
+                }
+                None => Entry {
+                    name: None,
+                    reach: Reach::NotReached,
+                },
             };
-            let fixed = w
-                .fastest_global
-                .iter()
-                .find(|f| f.target == target && for_good(f.scheme))
-                .map_or(
-                    Entry {
-                        name: None,
-                        reach: Reach::NotReached,
-                    },
-                    |f| Entry {
-                        name: f.scheme,
-                        reach: f.seconds,
-                    },
-                );
             rows.push(kepler_row(
                 scene,
                 target,
                 fixed,
-                |name| timed(name, target),
+                |name| timed(name, k),
                 peers.iter().map(|s| s[k]).collect(),
             ));
         }

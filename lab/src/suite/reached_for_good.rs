@@ -10,8 +10,9 @@
 //! rungs happen to fall, and would promise a user something the next
 //! tolerance does not keep.
 //!
-//! So a target counts as reached at the first run after which no run of the
-//! ladder is above it, and only when at least one dearer run confirms it:
+//! So a target counts as reached at the first run that meets it after which
+//! no run of the ladder misses it, and only when at least one dearer run
+//! confirms it:
 //! without that, the last rung of a ladder would count whatever the next one
 //! would have done. The cost is then read off as [`cost_to_reach`] reads it,
 //! between that run and the one before it, the ladder's last run above the
@@ -36,19 +37,28 @@ fn meets(error: Option<f64>, target: f64) -> bool {
     error.is_some_and(|e| e <= target)
 }
 
-/// The index from which the cost of `target` is read: the ladder's last run
-/// that misses it (or its first run, when none does), provided at least
-/// two measured runs after it meet the target; `None` otherwise.
-fn settled_from(data: &[(f64, Option<f64>)], target: f64) -> Option<usize> {
-    let start = data
-        .iter()
+/// The index of the first run after the ladder's last miss of `target`
+/// (the first run, when none misses).
+fn after_last_miss(data: &[(f64, Option<f64>)], target: f64) -> usize {
+    data.iter()
         .rposition(|&(_, e)| misses(e, target))
-        .unwrap_or(0);
-    let meeting = data[start..]
+        .map_or(0, |j| j + 1)
+}
+
+/// How many runs meet `target` after the ladder's last miss of it.
+fn meeting_since_last_miss(data: &[(f64, Option<f64>)], target: f64) -> usize {
+    data[after_last_miss(data, target)..]
         .iter()
         .filter(|&&(_, e)| meets(e, target))
-        .count();
-    (meeting >= 2).then_some(start)
+        .count()
+}
+
+/// The index from which the cost of `target` is read (the ladder's last run
+/// that misses it, or its first run when none does), provided at least two
+/// runs after the last miss meet the target; `None` otherwise.
+fn settled_from(data: &[(f64, Option<f64>)], target: f64) -> Option<usize> {
+    (meeting_since_last_miss(data, target) >= 2)
+        .then(|| after_last_miss(data, target).saturating_sub(1))
 }
 
 /// The cost of reaching `target` for good, from `(cost, error)` runs ordered
@@ -93,11 +103,18 @@ pub fn deciding_runs(data: &[(f64, Option<f64>)], target: f64) -> Vec<usize> {
     if k > s { vec![k - 1, k] } else { vec![k] }
 }
 
-/// The cost of the ladder's last run where that run is the only one to meet
-/// `target` after the ladder's last miss: the target may well be reached,
-/// but the ladder ends before a dearer run can confirm it. `None` where the
-/// target is reached for good, or the last run misses it.
+/// Some run has met `target` since the ladder's last miss of it: the
+/// target is reached for good, or waits for a dearer run to confirm it.
+pub fn met_since_last_miss(data: &[(f64, Option<f64>)], target: f64) -> bool {
+    meeting_since_last_miss(data, target) >= 1
+}
+
+/// The cost of the ladder's last measured run where that run is the only
+/// one to meet `target` after the ladder's last miss: the target may well
+/// be reached, but the ladder ends before a dearer run can confirm it.
+/// `None` where the target is reached for good, or the last measured run
+/// misses it.
 pub fn met_only_by_last_run(data: &[(f64, Option<f64>)], target: f64) -> Option<f64> {
-    let &(cost, error) = data.last()?;
-    (meets(error, target) && settled_from(data, target).is_none()).then_some(cost)
+    let &(cost, error) = data.iter().rev().find(|(_, e)| e.is_some())?;
+    (meets(error, target) && meeting_since_last_miss(data, target) == 1).then_some(cost)
 }

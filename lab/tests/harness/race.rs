@@ -6,7 +6,8 @@ use stepladder::internals::cost::work_points::Reach;
 use stepladder::scene::{OuterSolarSystem, Pleiades, Scene};
 
 use stepladder::state::State;
-use stepladder_lab::peer::PEERS;
+use stepladder_lab::peer::{PEER_TOLERANCES, PEERS};
+use stepladder_lab::suite::adaptive::OWN_PAIRS;
 use stepladder_lab::suite::dd_reference;
 use stepladder_lab::suite::race::{
     KAHAN_LI8_COMPENSATED, KEPLER_SCENES, NBODY_FIRST_STEPS, NBODY_MAX_EVALUATIONS, NBODY_SCENES,
@@ -30,6 +31,9 @@ fn settled(errors: &[Option<f64>], target: f64) -> bool {
 
 /// One contender's errors, cheapest run first.
 type Errors = Vec<Option<f64>>;
+
+/// Contenders by name, each with its errors.
+type Named = Vec<(&'static str, Errors)>;
 
 fn smallest_target() -> f64 {
     RACE_TARGETS.iter().copied().fold(f64::INFINITY, f64::min)
@@ -93,56 +97,132 @@ fn the_crate_needs_no_more_evaluations_than_any_peer_where_judged() {
     }
 }
 
-/// Every cost the race by evaluations gives, of the crate's best pair and
-/// of each peer, is of a target the contender's own runs reach for good,
-/// read off their errors here; and a peer whose runs settle a target has a
-/// cost there.
+/// Only the last measured run meets the target after the last miss, read
+/// off the errors directly.
+fn met_only_last(errors: &[Option<f64>], target: f64) -> bool {
+    let after = errors
+        .iter()
+        .rposition(|e| e.is_some_and(|e| e.is_nan() || e > target))
+        .map_or(0, |j| j + 1);
+    let meeting = errors[after..]
+        .iter()
+        .filter(|e| e.is_some_and(|e| e <= target))
+        .count();
+    let last = errors.iter().rev().find(|e| e.is_some()).copied().flatten();
+    meeting == 1 && last.is_some_and(|e| e <= target)
+}
+
+/// Every cost the race by evaluations gives, of the crate's cheapest fixed
+/// step, its best pair and each peer, is of a target the contender's own
+/// runs reach for good, read off their errors here; a peer whose runs
+/// settle a target has a cost there; and the contenders listed as
+/// unconfirmed are exactly those met only by the last run of their ladder.
 #[test]
 fn every_race_cost_is_of_a_target_reached_for_good() {
     let suite = super::common::suite();
+    let errors = |points: &[stepladder_lab::suite::race::RacePoint]| -> Errors {
+        points.iter().map(|p| p.error).collect()
+    };
     for row in &suite.race.rows {
         let who = format!("{} {:e}", row.scene, row.target);
-        // each contender's errors, cheapest run first
-        let (pairs, peers): (Vec<(&str, Errors)>, Vec<Errors>) = if let Some(r) = suite
+        // each contender's errors, cheapest run first: fixed steps, own
+        // pairs, peers
+        let (fixed, pairs, peers): (Named, Named, Named) = if let Some(r) = suite
             .race
             .nbody
             .iter()
             .find(|r| r.reference.scene == row.scene)
         {
-            let all: Vec<(&str, Vec<Option<f64>>)> = r
+            let all: Named = r
                 .adaptive
                 .iter()
-                .map(|l| (l.contender, l.points.iter().map(|p| p.error).collect()))
+                .map(|l| (l.contender, errors(&l.points)))
                 .collect();
             let (own, others) = all.split_at(all.len() - PEERS.len());
-            (own.to_vec(), others.iter().map(|x| x.1.clone()).collect())
+            let fixed = r
+                .fixed
+                .iter()
+                .map(|l| (l.contender, errors(&l.points)))
+                .collect();
+            (fixed, own.to_vec(), others.to_vec())
         } else {
             let own = suite
-                .adaptive
-                .ladders
+                .race
+                .kepler_pairs
                 .iter()
-                .filter(|l| l.scene == row.scene)
-                .map(|l| (l.integrator, l.points.iter().map(|p| p.error).collect()))
+                .filter(|(s, _)| *s == row.scene)
+                .map(|(_, l)| (l.contender, errors(&l.points)))
                 .collect();
             let work = suite.work.iter().find(|w| w.scene == row.scene).unwrap();
+            let fixed = work
+                .schemes
+                .iter()
+                .map(|s| (s.scheme, s.global.iter().map(|p| p.error).collect()))
+                .collect();
             let peers = work
                 .peers
                 .iter()
-                .map(|p| p.global.iter().map(|x| x.error).collect())
+                .map(|p| (p.peer, p.global.iter().map(|x| x.error).collect()))
                 .collect();
-            (own, peers)
+            (fixed, own, peers)
         };
-        if let Some(name) = row.pair.name {
-            let (_, e) = pairs.iter().find(|(n, _)| *n == name).unwrap();
-            assert!(settled(e, row.target), "{who}: {name} {e:?}");
+        for (side, entry) in [(&fixed, row.fixed), (&pairs, row.pair)] {
+            if let Some(name) = entry.name {
+                let (_, e) = side.iter().find(|(n, _)| *n == name).unwrap();
+                assert!(settled(e, row.target), "{who}: {name} {e:?}");
+            }
         }
         assert_eq!(peers.len(), row.peers.len(), "{who}");
-        for (e, reach) in peers.iter().zip(&row.peers) {
+        for ((name, e), reach) in peers.iter().zip(&row.peers) {
             assert_eq!(
                 reach.cost().is_some(),
                 settled(e, row.target),
-                "{who}: {e:?}"
+                "{who}: {name} {e:?}"
             );
+        }
+        let mut expected: Vec<&str> = fixed
+            .iter()
+            .chain(&pairs)
+            .chain(&peers)
+            .filter(|(_, e)| met_only_last(e, row.target))
+            .map(|(n, _)| *n)
+            .collect();
+        let mut listed: Vec<&str> = row.unconfirmed.iter().map(|u| u.0).collect();
+        expected.sort_unstable();
+        listed.sort_unstable();
+        assert_eq!(listed, expected, "{who}");
+    }
+}
+
+/// On the Kepler orbits each own pair's race ladder is its tolerance ladder
+/// carried on over the rest of the peers' tolerances: both sides are read
+/// over the same tolerances, and the runs the ladders share are the same.
+#[test]
+fn the_own_pairs_kepler_ladders_span_the_peers_tolerances() {
+    let suite = super::common::suite();
+    let pairs = &suite.race.kepler_pairs;
+    assert_eq!(pairs.len(), KEPLER_SCENES.len() * OWN_PAIRS.len());
+    for (scene, l) in pairs {
+        let settings: Vec<f64> = l.points.iter().map(|p| p.setting).collect();
+        assert_eq!(
+            settings,
+            PEER_TOLERANCES.to_vec(),
+            "{} on {scene}",
+            l.contender
+        );
+        let ladder = suite
+            .adaptive
+            .ladders
+            .iter()
+            .find(|x| x.scene == *scene && x.integrator == l.contender)
+            .unwrap();
+        assert!(ladder.points.len() < l.points.len());
+        for (p, q) in ladder.points.iter().zip(&l.points) {
+            assert_eq!((p.evaluations, p.error), (q.evaluations, q.error));
+        }
+        // the carried-on runs reached the end and measured an error
+        for p in &l.points[ladder.points.len()..] {
+            assert!(p.error.is_some(), "{} on {scene}: {p:?}", l.contender);
         }
     }
 }

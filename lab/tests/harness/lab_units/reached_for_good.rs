@@ -6,7 +6,7 @@
 use proptest::prelude::*;
 use stepladder::internals::cost::work_points::{Reach, cost_to_reach};
 use stepladder_lab::suite::reached_for_good::{
-    deciding_runs, met_only_by_last_run, reach_for_good,
+    deciding_runs, met_only_by_last_run, met_since_last_miss, reach_for_good,
 };
 
 /// A run's cost and error.
@@ -93,8 +93,15 @@ fn a_run_that_measured_nothing_neither_confirms_nor_takes_back() {
         reach_for_good(&refused_last, 1e-6),
         Reach::Interpolated(_)
     ));
-    // but it does not confirm a target only the run before it met
+    // but it does not confirm a target only the run before it met, which
+    // is then the last run that measured anything
     assert_eq!(reach_for_good(&refused_last, 5e-8), Reach::NotReached);
+    assert_eq!(met_only_by_last_run(&refused_last, 5e-8), Some(200.0));
+    assert!(met_since_last_miss(&refused_last, 5e-8));
+    // nothing met since the last miss, and nothing met at all
+    assert!(!met_since_last_miss(&refused_last, 5e-9));
+    assert_eq!(met_only_by_last_run(&refused_last, 5e-9), None);
+    assert!(!met_since_last_miss(&[(0.0, None)], 1.0));
     // a blow-up before the first run below leaves only a bound
     let blown = [(10.0, None), (100.0, Some(1e-7)), (200.0, Some(1e-8))];
     assert_eq!(reach_for_good(&blown, 1e-6), Reach::AtMost(100.0));
