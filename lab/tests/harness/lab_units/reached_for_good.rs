@@ -59,6 +59,22 @@ fn after_the_last_miss_the_cost_is_read_between_it_and_the_next_run() {
 }
 
 #[test]
+fn an_error_equal_to_the_target_meets_it() {
+    // as the first-run-below reading has it: at or below the target
+    let runs = [
+        (10.0, Some(1e-2)),
+        (100.0, Some(1e-6)),
+        (1000.0, Some(1e-6)),
+    ];
+    assert_eq!(reach_for_good(&runs, 1e-6), cost_to_reach(&runs, 1e-6));
+    assert!(matches!(
+        reach_for_good(&runs, 1e-6),
+        Reach::Interpolated(_)
+    ));
+    assert!(met_since_last_miss(&runs[..2], 1e-6));
+}
+
+#[test]
 fn the_last_run_alone_confirms_nothing() {
     let runs = [
         (10.0, Some(1e-2)),
