@@ -365,7 +365,7 @@ impl RaceLadder {
 
     /// The indices of the runs that decide the cost of `target`, the only
     /// runs the time race needs.
-    pub fn deciding(&self, target: f64) -> Vec<usize> {
+    pub(crate) fn deciding(&self, target: f64) -> Vec<usize> {
         deciding_runs(&self.data(), target)
     }
 }
