@@ -32,6 +32,7 @@ use crate::suite::reached_for_good::{
 };
 use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
 use serde::Serialize;
+use stepladder::internals::adaptive::tolerance_point;
 use stepladder::internals::cost::step_time::time_run;
 use stepladder::internals::cost::work_points::{Reach, cheapest, cost_to_reach};
 use stepladder::internals::parallel::parallel_map;
@@ -45,7 +46,6 @@ use stepladder::scheme::{
     Compensated, KAHAN_LI8, Scheme, SchemeVisitor, SplittingTable, scheme_ids, visit_scheme,
 };
 use stepladder::state::State;
-use stepladder::study::adaptive::tolerance_point;
 
 /// The Kepler scenes of the race.
 pub const KEPLER_SCENES: [&str; 2] = ["kepler-circular", "kepler-eccentric"];
