@@ -293,10 +293,11 @@ pub fn race_section(race: &RaceRecords) -> String {
          would be a draw of where a decade ladder's rungs happen to fall. So that both \
          sides are read over the same tolerances, the own pairs' Kepler ladders (which end \
          at {own_last:.0e}) are carried on here to the peers' tightest, {peer_last:.0e}. The \
-         fixed steps' runs on the Kepler orbits are the work study's rungs, which stop at \
-         the first rung below its smallest target, 1e-12, or where the error no longer falls \
-         as the order promises, so a target a fixed step first meets on its last rung counts \
-         as not reached. Where a \
+         fixed steps' runs on the Kepler orbits are the work study's rungs, which go on until \
+         two successive rungs meet its smallest target, 1e-12, or until the error no longer \
+         falls as the order promises (one rung more after a first meet, to confirm it or take \
+         it back), so a target a fixed step first meets on its last rung counts as not \
+         reached. Where a \
          contender meets a target only with the last run of its ladder, and that run costs \
          less than what reached it for good, the outcome names it as unconfirmed.\n\n\
          A fixed step pays everywhere for the orbit's fastest part, an adaptive one only \

@@ -28,7 +28,11 @@ pub fn method() -> String {
          - **global error**: the order study's own rungs, reused (the largest phase-space \
          error over `t_end` = 2 sqrt(2) periods), with the force evaluations each rung \
          spent, start-up included (counted by running the rung again on a counting scene \
-         for the implicit scheme, whose iterations vary with the step);\n\
+         for the implicit scheme, whose iterations vary with the step), and where they \
+         stop above the smallest target, further rungs at the same ratio against the \
+         exact solution until two successive rungs meet it, the error no longer falls as \
+         the order promises (one rung more after a first meet, which confirms it or takes \
+         it back), or a rung would break the order study's cap;\n\
          - **energy error**: the largest `|E - E0|/|E0|` over {ENERGY_PERIODS} periods, on a \
          ladder of its own halving the step from {ENERGY_START} period until the error is \
          below the smallest target, has stopped halving below {ENERGY_FLOOR_GUARD:e} \

@@ -32,6 +32,7 @@ use crate::suite::reached_for_good::{
 };
 use crate::suite::work_precision::{PEER_REPEATS, WorkRecord, WorkTiming};
 use serde::Serialize;
+use stepladder::internals::adaptive::tolerance_point;
 use stepladder::internals::cost::step_time::time_run;
 use stepladder::internals::cost::work_points::{Reach, cheapest, cost_to_reach};
 use stepladder::internals::parallel::parallel_map;
@@ -1047,29 +1048,12 @@ impl<I: AdaptiveIntegrator> SceneVisitor for ExactRunOn<'_, I> {
         scene: &S,
     ) -> RacePoint {
         let (t_end, tol) = (self.1, self.2);
-        let run = self.0.run(scene, t_end, tol).ok();
-        let error = run
-            .as_ref()
-            .filter(|r| r.end == RunEnd::Reached)
-            .and_then(|r| {
-                let worst = r
-                    .trajectory
-                    .iter()
-                    .map(|(t, s)| {
-                        scene
-                            .exact(*t)
-                            .map_or(f64::NAN, |x| scene.phase_distance(s, &x))
-                    })
-                    .fold(
-                        0.0,
-                        |m: f64, d| if d.is_nan() { f64::NAN } else { m.max(d) },
-                    );
-                worst.is_finite().then_some(worst)
-            });
+        // a refused request measured nothing, as a run that gave up
+        let point = tolerance_point(self.0, scene, t_end, tol).ok();
         RacePoint {
             setting: tol,
-            evaluations: run.map_or(0, |r| r.evaluations),
-            error,
+            evaluations: point.as_ref().map_or(0, |p| p.evaluations),
+            error: point.and_then(|p| p.error),
         }
     }
 }

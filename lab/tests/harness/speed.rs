@@ -7,6 +7,7 @@ use stepladder::internals::cost::step_time::{floor_verlet_kepler, run_steps, spe
 use stepladder::internals::cost::work_points::{
     Reach, TARGETS, TargetCost, WorkPoint, cheapest, cost_to_reach, start_evaluations,
 };
+use stepladder::internals::ladder::AUTO_MAX_RUNG_EVALUATIONS;
 use stepladder::internals::run::integrate;
 use stepladder::scene::{AnyScene, Counted, Harmonic, KeplerCircular, Scene, SceneVisitor};
 use stepladder::scheme::{AdaptiveIntegrator, RunEnd};
@@ -213,15 +214,34 @@ fn work_points_reuse_the_order_rungs_and_count_their_evaluations() {
                     assert_eq!(p.h, record.t_end / steps as f64, "{}", w.scheme);
                 }
             }
-            // the continuation only ever refines, and only while the
-            // smallest target has not been reached
+            // the continuation only ever refines, and only until two
+            // successive rungs meet the smallest target
             for pair in w.global.windows(2) {
                 assert!(pair[1].steps > pair[0].steps, "{}", w.scheme);
             }
             let smallest = TARGETS.iter().copied().fold(f64::INFINITY, f64::min);
-            let extended = &w.global[order.rungs.len().saturating_sub(1)..];
-            for p in &extended[..extended.len().saturating_sub(1)] {
-                assert!(p.error.is_some_and(|e| e > smallest), "{}", w.scheme);
+            let meets = |p: &WorkPoint| p.error.is_some_and(|e| e <= smallest);
+            let first_added = order.rungs.len();
+            for i in first_added..w.global.len() {
+                let before = &w.global[..i];
+                let settled = before.len() >= 2 && before.iter().rev().take(2).all(meets);
+                assert!(!settled, "{} rung {i} after two that meet", w.scheme);
+            }
+            // and a rung that meets it for the first time is followed by one
+            // that confirms it or takes it back, unless that one would
+            // break the order study's cap on a rung's evaluations
+            if let [.., before, last] = w.global.as_slice() {
+                let added = w.global.len() > first_added;
+                if added && meets(last) && !meets(before) {
+                    let ratio = last.steps as f64 / before.steps as f64;
+                    assert!(
+                        last.evaluations as f64 * ratio > 0.9 * AUTO_MAX_RUNG_EVALUATIONS as f64,
+                        "{} on {}: {:?} met at the last rung and was not confirmed",
+                        w.scheme,
+                        record.scene,
+                        last.error
+                    );
+                }
             }
         }
     }

@@ -202,7 +202,7 @@ pub fn tolerance_ladder<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     let claims = integrator.claims();
     let mut points = Vec::with_capacity(spec.tolerances.len());
     for &tol in &spec.tolerances {
-        points.push(point(integrator, scene, t_end, tol)?);
+        points.push(tolerance_point(integrator, scene, t_end, tol)?);
         if points.last().is_some_and(|p| p.breakdown.is_some()) {
             // tighter tolerances cannot undo a breakdown
             break;
@@ -344,7 +344,24 @@ fn first_non_finite<const D: usize>(run: &AdaptiveRun<D>) -> Option<String> {
     ))
 }
 
-pub(crate) fn point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
+/// One point of the tolerance ladder: `integrator` run on `scene` to `t_end`
+/// at tolerance `tol`, its error the largest phase-space distance to the
+/// exact solution over the states it recorded (`None` where the run did not
+/// reach `t_end`, the scene has no exact solution, or a distance is not
+/// finite). A panic in the integrator's code is caught and recorded as a
+/// breakdown, not propagated.
+///
+/// ```
+/// use stepladder::scene::KeplerCircular;
+/// use stepladder::scheme::DPRKN8_ADAPTIVE;
+/// use stepladder::study::adaptive::tolerance_point;
+///
+/// let p = tolerance_point(&DPRKN8_ADAPTIVE, &KeplerCircular, 1.0, 1e-8)?;
+/// assert!(p.error.is_some_and(|e| e < 1e-6));
+/// assert!(p.evaluations > 0 && p.breakdown.is_none());
+/// # Ok::<(), stepladder::Error>(())
+/// ```
+pub fn tolerance_point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     integrator: &I,
     scene: &S,
     t_end: f64,

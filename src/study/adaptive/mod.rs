@@ -12,6 +12,6 @@ pub mod ladder;
 pub mod pin;
 pub mod record;
 
-pub use ladder::{ToleranceLadderSpec, tolerance_ladder};
+pub use ladder::{ToleranceLadderSpec, tolerance_ladder, tolerance_point};
 pub use pin::{AdaptivePin, AdaptivePinOutcome, check_adaptive_pin};
 pub use record::{AdaptiveClaim, JudgedClaim, ToleranceLadderRecord, TolerancePoint};

@@ -26,7 +26,7 @@
 //! would be reported as a change (a chance of about `N` times `1e-16` for a
 //! run of `N` steps).
 
-use super::ladder::point;
+use super::ladder::tolerance_point;
 use super::record::ToleranceLadderRecord;
 use crate::error::Error;
 use crate::scene::{Scaled, Scene};
@@ -255,7 +255,7 @@ fn error_at<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     t_end: f64,
     tol: f64,
 ) -> Result<f64, String> {
-    let p = point(integrator, scene, t_end, tol).map_err(|e| e.to_string())?;
+    let p = tolerance_point(integrator, scene, t_end, tol).map_err(|e| e.to_string())?;
     match (p.end, p.error) {
         (RunEnd::Reached, Some(e)) => Ok(e),
         _ => Err(format!(

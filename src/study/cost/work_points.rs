@@ -10,9 +10,9 @@
 //!   rung again on a counting scene for an implicit one, whose iterations
 //!   vary from rung to rung. The order study's ladder stops where round-off
 //!   would disturb an order fit, which can be above a target the error
-//!   itself still reaches: where the smallest target is not met and the
-//!   error is still falling, the ladder goes on at the same ratio
-//!   ([`beyond_the_floor`]);
+//!   itself still reaches: until two successive rungs meet the smallest
+//!   target, and while the error is still falling, the ladder goes on at the
+//!   same ratio ([`beyond_the_floor`]);
 //! - the **energy error on a long run**, the largest `|E - E0|/|E0|` over
 //!   [`ENERGY_PERIODS`] periods, on a ladder of its own that halves the step
 //!   from 1/8 period until the error is below the smallest target, stops
@@ -210,31 +210,47 @@ pub fn start_evaluations<M: Scheme, S: Scene<D> + Clone, const D: usize>(
 /// order study's densest ratio.
 pub const EXTRA_RUNGS: usize = 16;
 
-/// Work points past the order study's finest rung, for a target it did not
-/// reach: the same error (against the exact solution, at the same
-/// comparison steps), each rung `ratio` times the previous one's steps,
-/// while the error falls by at least a tenth of what the scheme's order
-/// promises per rung (past that it is round-off, not truncation, and
-/// stepping finer only costs more) and the cost stays under the order
-/// study's cap.
+/// Work points past the `measured` ones (the order study's rungs as work
+/// points), until two successive rungs meet the smallest target: the same
+/// error (against the exact solution, at the same comparison steps), each
+/// rung `ratio` times the previous one's steps, while the error falls by at
+/// least a tenth of what the scheme's order promises per rung (past that it
+/// is round-off, not truncation, and stepping finer only costs more) or has
+/// just met the target, and while the cost stays under the order study's
+/// cap.
+///
+/// Why two: near the round-off floor an error can dip below a target on one
+/// rung and rise above it on the next. A reading that counts a target as
+/// reached only once a finer run confirms it needs the rung after the first
+/// that meets it; [`cost_to_reach`] reads the first crossing either way, so
+/// the extra rung changes no cost it reads.
 pub fn beyond_the_floor<M: Scheme, S: Scene<D> + Clone, const D: usize>(
     scheme: &M,
     scene: &S,
     record: &OrderRecord,
     t_end: f64,
-    finest: &WorkPoint,
+    measured: &[WorkPoint],
 ) -> Vec<WorkPoint> {
     let smallest = TARGETS.iter().copied().fold(f64::INFINITY, f64::min);
-    let measured: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
-    let (Some(error), [.., coarser, last]) = (finest.error, measured.as_slice()) else {
+    let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
+    let with_error: Vec<&WorkPoint> = measured.iter().filter(|p| p.error.is_some()).collect();
+    let (Some(finest), [.., coarser, last]) = (with_error.last(), rungs.as_slice()) else {
         return Vec::new();
     };
+    let meets = |p: &WorkPoint| p.error.is_some_and(|e| e <= smallest);
+    // how many of the finest rungs in a row meet the smallest target
+    let mut met_in_a_row = with_error
+        .iter()
+        .rev()
+        .take(2)
+        .take_while(|p| meets(p))
+        .count();
     let ratio = last.steps as f64 / coarser.steps as f64;
     let promised = ratio.powi(scheme.meta().order as i32);
     let per_step = finest.evaluations as f64 / finest.steps as f64;
     let mut points = Vec::new();
-    let (mut steps, mut previous) = (finest.steps, error);
-    while previous > smallest && points.len() < EXTRA_RUNGS {
+    let (mut steps, mut previous) = (finest.steps, finest.error.unwrap_or(f64::INFINITY));
+    while met_in_a_row < 2 && points.len() < EXTRA_RUNGS {
         steps = ((steps as f64 * ratio).round() as u64).max(steps + 1);
         if per_step * steps as f64 > crate::ladder::AUTO_MAX_RUNG_EVALUATIONS as f64 {
             break;
@@ -243,8 +259,11 @@ pub fn beyond_the_floor<M: Scheme, S: Scene<D> + Clone, const D: usize>(
             break;
         };
         let error = point.error.unwrap_or(f64::INFINITY);
+        met_in_a_row = if meets(&point) { met_in_a_row + 1 } else { 0 };
         points.push(point);
-        if error > previous / (1.0 + 0.1 * (promised - 1.0)) {
+        // a stalled error stops the ladder, except on a rung that has just
+        // met the target: the next one confirms it or takes it back
+        if error > previous / (1.0 + 0.1 * (promised - 1.0)) && met_in_a_row != 1 {
             break;
         }
         previous = error;
@@ -427,9 +446,8 @@ pub fn scheme_work<M: Scheme, S: Scene<D> + Clone, const D: usize>(
             })
             .collect()
     };
-    if let Some(finest) = global.iter().rev().find(|p| p.error.is_some()).copied() {
-        global.extend(beyond_the_floor(scheme, scene, record, t_end, &finest));
-    }
+    let beyond = beyond_the_floor(scheme, scene, record, t_end, &global);
+    global.extend(beyond);
     let energy = energy_points(scheme, scene);
     let evaluations = |p: &WorkPoint| p.evaluations as f64;
     SchemeWork {
