@@ -359,7 +359,7 @@ fn first_non_finite<const D: usize>(run: &AdaptiveRun<D>) -> Option<String> {
 /// let p = tolerance_point(&DPRKN8_ADAPTIVE, &KeplerCircular, 1.0, 1e-8)?;
 /// assert!(p.error.is_some_and(|e| e < 1e-6));
 /// assert!(p.evaluations > 0 && p.breakdown.is_none());
-/// # Ok::<(), stepladder::Error>(())
+/// # Ok::<(), stepladder::error::Error>(())
 /// ```
 pub fn tolerance_point<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     integrator: &I,
