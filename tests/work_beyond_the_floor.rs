@@ -5,12 +5,12 @@
 //! or the run that takes it back.
 
 use stepladder::internals::cost::work_points::{
-    EXTRA_RUNGS, TARGETS, WorkPoint, beyond_the_floor, scheme_work,
+    EXTRA_RUNGS, SchemeWork, TARGETS, WorkPoint, beyond_the_floor, scheme_work,
 };
 use stepladder::internals::ladder::AUTO_MAX_RUNG_EVALUATIONS;
 use stepladder::scene::{KeplerCircular, KeplerEccentric, Scene};
 use stepladder::scheme::{DPRKN6, ImplicitMidpoint, KAHAN_LI8, PEFRL, Rk4, Scheme, YOSHIDA6};
-use stepladder::study::{OrderSpec, global_order};
+use stepladder::study::{OrderRecord, OrderSpec, global_order};
 
 fn smallest() -> f64 {
     TARGETS.iter().copied().fold(f64::INFINITY, f64::min)
@@ -20,15 +20,20 @@ fn meets(p: &WorkPoint) -> bool {
     p.error.is_some_and(|e| e <= smallest())
 }
 
+/// RKN6(4)'s order study on the circular orbit and its work points.
+fn rkn6_on_the_circular_orbit() -> (OrderRecord, SchemeWork) {
+    let record = global_order(&DPRKN6, &KeplerCircular, &OrderSpec::default()).unwrap();
+    let work = scheme_work(&DPRKN6, &KeplerCircular, &record);
+    (record, work)
+}
+
 /// RKN6(4)'s error on the circular orbit falls like `h^6` down to about
 /// `1e-14` (the round-off of some `1e4` steps), so `1e-12` lies on the
 /// truncation slope: the ladder stops at the first pair of rungs that both
 /// meet it, and not before.
 #[test]
 fn the_ladder_stops_at_the_first_two_rungs_that_meet_the_smallest_target() {
-    let scene = KeplerCircular;
-    let record = global_order(&DPRKN6, &scene, &OrderSpec::default()).unwrap();
-    let work = scheme_work(&DPRKN6, &scene, &record);
+    let (record, work) = rkn6_on_the_circular_orbit();
     let g = &work.global;
     assert!(
         g.len() > record.rungs.len(),
@@ -50,12 +55,11 @@ fn the_ladder_stops_at_the_first_two_rungs_that_meet_the_smallest_target() {
 #[test]
 fn a_lone_meet_is_followed_by_the_rung_that_confirms_or_takes_it_back() {
     let scene = KeplerCircular;
-    let record = global_order(&DPRKN6, &scene, &OrderSpec::default()).unwrap();
+    let (record, work) = rkn6_on_the_circular_orbit();
     let t_end = scene.default_t_end();
     // the ladder's rungs over the race's t_end while the error is above
     // 1e-10, a hundred times the target: the rung after them still misses
     // it by far (a rung's ratio of steps is at most two, 2^6 in the error)
-    let work = scheme_work(&DPRKN6, &scene, &record);
     let measured: Vec<WorkPoint> = work
         .global
         .iter()
@@ -203,9 +207,8 @@ fn a_rung_that_no_longer_falls_as_the_order_promises_ends_the_ladder() {
 #[test]
 fn the_ladder_stops_at_its_rung_limit_and_at_the_cap() {
     let scene = KeplerCircular;
-    let record = global_order(&DPRKN6, &scene, &OrderSpec::default()).unwrap();
+    let (record, work) = rkn6_on_the_circular_orbit();
     let t_end = scene.default_t_end();
-    let work = scheme_work(&DPRKN6, &scene, &record);
     let coarsest = work.global[0];
     assert!(coarsest.error.is_some_and(|e| e > 1e-3), "{coarsest:?}");
     let beyond = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[coarsest]);
