@@ -669,12 +669,50 @@ pub fn brahe_rkn1210(
     tol: f64,
     force: &Force<f64>,
 ) -> Advance {
-    use brahe::integrators::{IntegratorConfig, SIntegrator};
+    let config = brahe::integrators::IntegratorConfig::adaptive(tol, tol);
+    brahe_rkn1210_with(config, q, v, t0, t1, force)
+}
+
+/// [`brahe_rkn1210`] with the step cap lifted (`max_step: None`), every
+/// other setting the default: what the cap of 900 time units
+/// (`IntegratorConfig::default`, config.rs) does to a scene whose steps
+/// would exceed it, the outer solar system in days.
+pub fn brahe_rkn1210_uncapped(
+    q: &mut [f64],
+    v: &mut [f64],
+    t0: f64,
+    t1: f64,
+    tol: f64,
+    force: &Force<f64>,
+) -> Advance {
+    let config = brahe::integrators::IntegratorConfig {
+        max_step: None,
+        ..brahe::integrators::IntegratorConfig::adaptive(tol, tol)
+    };
+    brahe_rkn1210_with(config, q, v, t0, t1, force)
+}
+
+/// brahe's default step cap (`IntegratorConfig::default().max_step`).
+pub fn brahe_max_step() -> Option<f64> {
+    brahe::integrators::IntegratorConfig::default().max_step
+}
+
+/// brahe's RKN12(10) under `config`, driven from `t0` to `t1` as
+/// [`brahe_rkn1210`] says.
+fn brahe_rkn1210_with(
+    config: brahe::integrators::IntegratorConfig,
+    q: &mut [f64],
+    v: &mut [f64],
+    t0: f64,
+    t1: f64,
+    force: &Force<f64>,
+) -> Advance {
+    use brahe::integrators::SIntegrator;
     use std::sync::atomic::Ordering::Relaxed;
     let mut run = Advance::reached();
     macro_rules! run {
         ($n:literal, $m:literal) => {{
-            let config = IntegratorConfig::adaptive(tol, tol);
+            let config = config.clone();
             let (integrator, start, attempts) = brahe_rkn1210!($n, $m, force, config);
             let mut y = brahe_nalgebra::SVector::<f64, $m>::from_iterator(
                 q.iter().chain(v.iter()).copied(),

@@ -18,7 +18,9 @@
 //! one tableau differ by a few percent, less than two bracketing runs'
 //! interpolation (the repository's race's `cost_to_reach`) can tell apart.
 //! How far that interpolation moves with the grid's offset is measured here
-//! too ([`Contender::decade_spread`]).
+//! too ([`Contender::decade_spread`]), and so is what brahe's default step
+//! cap does to its cost: brahe runs the same ladders again with the cap
+//! lifted ([`SceneRace::uncapped`]), beside the race, not in it.
 //!
 //! The N-body references are the repository's race's, read from
 //! `lab/references/` (written by `stepladder reference`; a harness test
@@ -239,13 +241,22 @@ pub struct SceneRace {
     pub reference_error: f64,
     /// brahe first, then stepladder's pairs.
     pub contenders: Vec<Contender>,
+    /// brahe with its step cap lifted, run alongside the contenders but not
+    /// one of them: the race takes each crate as its defaults leave it, and
+    /// this measures what one of brahe's defaults does to its cost.
+    pub uncapped: Contender,
 }
 
 impl SceneRace {
     /// Whether the reference resolves `target`.
     pub fn judges(&self, target: f64) -> bool {
-        self.reference_error <= REFERENCE_SHARE * target
+        judged(self.reference_error, target)
     }
+}
+
+/// Whether a reference whose own error is `reference_error` judges `target`.
+fn judged(reference_error: f64, target: f64) -> bool {
+    reference_error <= REFERENCE_SHARE * target
 }
 
 /// brahe's pair as the race runs it.
@@ -254,6 +265,15 @@ fn brahe() -> AdaptiveBlackBox<stepladder::scheme::AdvanceFn> {
         "brahe RKN1210",
         stepladder::scheme::AdaptiveClaims::pair(12, 10),
         crate::glue::brahe_rkn1210,
+    )
+}
+
+/// brahe's pair with its step cap lifted (`max_step: None`).
+fn brahe_uncapped() -> AdaptiveBlackBox<stepladder::scheme::AdvanceFn> {
+    AdaptiveBlackBox::new(
+        "brahe RKN1210 without its step cap",
+        stepladder::scheme::AdaptiveClaims::pair(12, 10),
+        crate::glue::brahe_rkn1210_uncapped,
     )
 }
 
@@ -357,26 +377,28 @@ fn race_on<S: Scene<D>, const D: usize>(
     reference_error: f64,
     error: impl Fn(&AdaptiveRun<D>) -> Option<f64>,
 ) -> SceneRace {
-    let mut race = SceneRace {
-        scene: scene.meta().id,
-        t_end,
-        reference,
-        reference_error,
-        contenders: Vec::new(),
-    };
     let smallest = TARGETS
         .iter()
         .copied()
-        .filter(|&t| race.judges(t))
+        .filter(|&t| judged(reference_error, t))
         .fold(TARGETS[0], f64::min);
-    let brahe = brahe();
+    let (brahe, uncapped) = (brahe(), brahe_uncapped());
     let runners = [
         Runner::new(&brahe, scene, t_end),
         Runner::new(&DPRKN12_ADAPTIVE, scene, t_end),
         Runner::new(&DPRKN12_COMPENSATED, scene, t_end),
+        Runner::new(&uncapped, scene, t_end),
     ];
-    race.contenders = ladders(&runners, smallest, &error);
-    race
+    let mut contenders = ladders(&runners, smallest, &error);
+    let uncapped = contenders.pop().expect("the uncapped runner's ladder");
+    SceneRace {
+        scene: scene.meta().id,
+        t_end,
+        reference,
+        reference_error,
+        contenders,
+        uncapped,
+    }
 }
 
 /// The distance at the end time to `reference`.

@@ -6,6 +6,7 @@ use crate::race::{Contender, SceneRace, TARGETS};
 use crate::target_cost::{self, Reach};
 use crate::{Audit, FIXED_PROPS, Prop, Provenance, disagreements};
 use std::fmt::Write;
+use stepladder::scene::{OuterSolarSystem, Scene};
 use stepladder::study::Verdict;
 
 /// Defects the audit's autonomous scenes cannot see, with the independent
@@ -558,7 +559,17 @@ impl Standing {
 /// brahe's standing at one target by `cost`; `None` unless brahe and one of
 /// stepladder's pairs reach it.
 fn standing(race: &SceneRace, cost: impl Fn(&Contender) -> Reach) -> Option<Standing> {
-    let brahe = cost(&race.contenders[0]);
+    standing_of(&race.contenders[0], race, cost)
+}
+
+/// `peer`'s standing against stepladder's cheaper pair at one target by
+/// `cost`; `None` unless both reach it.
+fn standing_of(
+    peer: &Contender,
+    race: &SceneRace,
+    cost: impl Fn(&Contender) -> Reach,
+) -> Option<Standing> {
+    let brahe = cost(peer);
     let own = race.contenders[1..]
         .iter()
         .map(&cost)
@@ -650,8 +661,96 @@ fn race_summary(races: &[SceneRace]) -> String {
          state's size over its rate, `||y0|| / ||f(y0)||`, in the same scaled norm with each block's\n\
          (positions', velocities') length in place of each component's, a rejected one retried where its\n\
          estimate points; stepladder's compensated pair adds each increment with its rounding\n\
-         carried. Which of these makes the differences in the tables is not measured here.\n",
+         carried. One of these is measured: the step cap, below.\n",
     );
+    s
+}
+
+/// What brahe's step cap does: where brahe's runs take as many steps as
+/// steps of the cap would, and brahe run again without it, at every judged
+/// target of the scenes where that changes a run.
+fn cap_section(races: &[SceneRace]) -> String {
+    let Some(cap) = crate::glue::brahe_max_step() else {
+        return String::new();
+    };
+    let mut s = format!(
+        "\n**brahe's step cap.** brahe's defaults hold every step to at most {cap} time units, a bound\n\
+         its documentation gives in seconds (config.rs:69, `max_step: Some(900.0) (15 minutes)`); the\n\
+         audit passes each scene in its own units, so on the outer solar system, in days, no step may\n\
+         exceed {cap} days, {share:.2} of Jupiter's period.\n",
+        share = cap / OuterSolarSystem::default().period(),
+    );
+    for race in races {
+        let fewest = (race.t_end / cap).ceil() as u64;
+        let held: Vec<f64> = race.contenders[0]
+            .points
+            .iter()
+            .filter(|p| p.error.is_some() && p.accepted == fewest)
+            .map(|p| p.tolerance)
+            .collect();
+        if let (Some(first), Some(last)) = (held.first(), held.last()) {
+            let _ = writeln!(
+                s,
+                "On `{}` (end time {:.0}) {} of brahe's runs, at tolerances from {first:.2e} to {last:.2e},\n\
+                 accept {fewest} steps, as many as steps of {cap} take to the end (`ceil(t_end / max_step)`):\n\
+                 there the cap, not brahe's estimate, sets the steps.",
+                race.scene,
+                race.t_end,
+                held.len(),
+            );
+        }
+    }
+    s.push_str(
+        "Called directly on the outer solar system at 1e-7, with a force written apart from stepladder\n\
+         (`tests/independent.rs`), brahe steps exactly the cap every step but the first (the caller's\n\
+         proposal, cut down from the whole interval by rejections: the cap bounds only the proposals\n\
+         brahe returns) and the last (cut to land on the end time).\n",
+    );
+    // a scene where no run changes without the cap needs no row
+    let same_runs = |a: &Contender, b: &Contender| {
+        let key = |c: &Contender| -> Vec<_> {
+            c.points
+                .iter()
+                .map(|p| (p.evaluations, p.accepted, p.rejected, p.error))
+                .collect()
+        };
+        key(a) == key(b)
+    };
+    let (unchanged, changed): (Vec<&SceneRace>, Vec<&SceneRace>) = races
+        .iter()
+        .partition(|r| same_runs(&r.contenders[0], &r.uncapped));
+    if !unchanged.is_empty() {
+        let names: Vec<String> = unchanged.iter().map(|r| format!("`{}`", r.scene)).collect();
+        let _ = writeln!(
+            s,
+            "On {} every run is the same without the cap, run for run:\n\
+             no step reaches it.",
+            names.join(", ")
+        );
+    }
+    if changed.is_empty() {
+        return s;
+    }
+    s.push_str(
+        "Run again with `max_step: None`, every other setting the same (the same glue, brahe's own\n\
+         code), brahe needs these evaluations where the cap changes its runs; the last column divides them\n\
+         by the cheaper of stepladder's pairs, as \"brahe / best\" does above:\n\n\
+         | scene | target | brahe RKN1210 | without its step cap | without its step cap / best |\n\
+         | --- | --- | --- | --- | --- |\n",
+    );
+    for race in changed {
+        for target in TARGETS.into_iter().filter(|&t| race.judges(t)) {
+            let cell = standing_of(&race.uncapped, race, |c| c.evaluations(target))
+                .map_or("-".to_string(), |st| st.cell());
+            let _ = writeln!(
+                s,
+                "| `{}` | {target:.0e} | {} | {} | {cell} |",
+                race.scene,
+                reach(race.contenders[0].evaluations(target)),
+                reach(race.uncapped.evaluations(target)),
+            );
+        }
+    }
     s
 }
 
@@ -703,7 +802,8 @@ pub fn race_section(races: &[SceneRace]) -> String {
          Each runs the tolerances 1e-3 down to 1e-16, {per} a decade (relative and absolute alike), until\n\
          its error is a decade below the smallest target judged; its error is the phase-space distance at\n\
          the end time to the reference, its evaluations are counted on the callback, and each run is timed\n\
-         the fastest of {repeats} rounds in which the three take turns (on a machine shared with other work).\n\
+         the fastest of {repeats} rounds in which the three (and brahe without its step cap, below) take turns\n\
+         (on a machine shared with other work).\n\
          A target is judged where the reference's own error is at most a tenth of it. The references are\n\
          the repository's race's (`lab/references/`). Reproduce with `cargo run --release` in `audit/`.\n\n\
          Every run whose error lies within a decade of a target predicts the evaluations to reach it by the\n\
@@ -778,6 +878,7 @@ pub fn race_section(races: &[SceneRace]) -> String {
         }
     }
     s.push_str(&race_summary(races));
+    s.push_str(&cap_section(races));
     let _ = writeln!(
         s,
         "\nThe runs of each contender (tolerance: force evaluations (accepted steps + rejected attempts),\n\
@@ -787,7 +888,7 @@ pub fn race_section(races: &[SceneRace]) -> String {
          | --- | --- | --- | --- |"
     );
     for race in races {
-        for c in &race.contenders {
+        for c in race.contenders.iter().chain([&race.uncapped]) {
             let runs: Vec<String> = c
                 .points
                 .iter()

@@ -586,3 +586,90 @@ fn brahe_rkn1210() {
     );
     assert!((order - 12.0).abs() <= 0.5, "observed order {order}");
 }
+
+/// The accepted steps of brahe's RKN12(10) on the outer solar system in
+/// days from `t = 0` to `t_end` at tolerance `tol` under `config`'s other
+/// settings, driven as the audit's glue drives it (the whole interval first,
+/// then each `dt_next`, the last step cut to land on `t_end`). The force is
+/// written here: Newton's pairwise gravity in the mass-weighted coordinates
+/// `sqrt(m_i) r_i` of the scene, from its published masses and `G`; only
+/// the initial state is taken from stepladder's scene.
+fn brahe_outer_steps(max_step: Option<f64>, tol: f64) -> Vec<f64> {
+    use brahe::integrators::{
+        IntegratorConfig, RKN1210SIntegrator, SIntegrator, SIntegratorConstructor,
+    };
+    use brahe_nalgebra::SVector;
+    use stepladder::scene::{OuterSolarSystem, Scene};
+    const G: f64 = OuterSolarSystem::G;
+    const M: [f64; 6] = OuterSolarSystem::MASSES;
+    let f = |_t: f64, y: &SVector<f64, 36>, _: Option<&SVector<f64, 0>>| {
+        let mut dy = SVector::<f64, 36>::zeros();
+        let r = |i: usize, k: usize| y[3 * i + k] / M[i].sqrt();
+        for i in 0..6 {
+            for k in 0..3 {
+                dy[3 * i + k] = y[18 + 3 * i + k];
+            }
+            for j in (0..6).filter(|&j| j != i) {
+                let d: Vec<f64> = (0..3).map(|k| r(j, k) - r(i, k)).collect();
+                let dist3 = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).powf(1.5);
+                for k in 0..3 {
+                    dy[18 + 3 * i + k] += M[i].sqrt() * G * M[j] * d[k] / dist3;
+                }
+            }
+        }
+        Ok(dy)
+    };
+    let scene = OuterSolarSystem::default();
+    let start = scene.initial();
+    let t_end = scene.default_t_end();
+    let config = IntegratorConfig {
+        max_step,
+        ..IntegratorConfig::adaptive(tol, tol)
+    };
+    let rkn: RKN1210SIntegrator<36, 0> =
+        RKN1210SIntegrator::with_config(Box::new(f), None, None, None, config);
+    let mut y = SVector::<f64, 36>::from_iterator(start.q.iter().chain(start.v.iter()).copied());
+    let (mut t, mut dt, mut steps) = (0.0, t_end, Vec::new());
+    while t < t_end {
+        let h = dt.min(t_end - t);
+        let step = rkn.step(t, y, None, Some(h)).expect("an accepted step");
+        t = if step.dt_used == t_end - t {
+            t_end
+        } else {
+            t + step.dt_used
+        };
+        y = step.state;
+        dt = step.dt_next;
+        steps.push(step.dt_used);
+    }
+    steps
+}
+
+/// brahe's default step cap (`max_step: Some(900.0)`, config.rs,
+/// `Default`) sets the steps of its RKN12(10) on the outer solar system in
+/// days, as the audit's race reports: at tolerance `1e-7` every accepted
+/// step but the first and the last is exactly 900 days, and there are
+/// `ceil(t_end / 900) = 14` steps over the 12,254 days. The cap bounds only
+/// the proposals brahe returns (`dt_next`), not the step its caller passes,
+/// so the first step, cut down from the whole interval by rejections, may
+/// exceed it; the last is cut to land on the end. With the cap lifted the
+/// estimate lets brahe step further than 900 days. Checked with the crate
+/// called directly and a force written here, not through stepladder's
+/// adapters.
+#[test]
+fn brahe_rkn1210_is_held_by_its_step_cap_on_the_outer_solar_system() {
+    let cap = brahe::integrators::IntegratorConfig::default()
+        .max_step
+        .expect("a default step cap");
+    assert_eq!(cap, 900.0, "the cap the audit's report describes");
+    let capped = brahe_outer_steps(Some(cap), 1e-7);
+    let free = brahe_outer_steps(None, 1e-7);
+    let longest = |s: &[f64]| s.iter().copied().fold(0.0, f64::max);
+    println!("with the cap: {capped:.1?}\nwithout: {free:.1?}");
+    let t_end: f64 = capped.iter().sum();
+    let inner = &capped[1..capped.len() - 1];
+    assert!(inner.iter().all(|&h| h == cap), "{capped:?}");
+    assert!(capped[capped.len() - 1] <= cap, "{capped:?}");
+    assert_eq!(capped.len() as f64, (t_end / cap).ceil(), "{capped:?}");
+    assert!(longest(&free) > cap, "{free:?}");
+}
