@@ -225,3 +225,149 @@ fn the_ladder_stops_at_its_rung_limit_and_at_the_cap() {
     };
     assert!(beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[dear]).is_empty());
 }
+
+/// Where the stall threshold lies: a rung that fell by just more than a
+/// tenth of what the order promises (`1 + 0.1 (ratio^p - 1)`) keeps the
+/// ladder going, and one that fell by just less ends it. The error before
+/// the first added rung is forged: RKN6(4)'s coarsest rung on the circular
+/// orbit (23 steps, far above the target) with its error set to the first
+/// added rung's times a factor `0.01` either side of the threshold (a
+/// threshold of `1 + 0.1 (ratio^p + 1)` or `1 + 0.1 ratio^p` would lie
+/// `0.2` or `0.1` above it).
+#[test]
+fn the_stall_threshold_is_a_tenth_of_what_the_order_promises() {
+    let scene = KeplerCircular;
+    let (record, work) = rkn6_on_the_circular_orbit();
+    let t_end = scene.default_t_end();
+    let coarsest = work.global[0];
+    let first = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[coarsest])[0];
+    let e1 = first.error.expect("an error");
+    assert!(e1 > 1e-6, "{first:?}");
+    let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
+    let [.., coarser, last] = rungs.as_slice() else {
+        panic!("fewer than two rungs")
+    };
+    let promised = (last.steps as f64 / coarser.steps as f64).powi(6);
+    let threshold = 1.0 + 0.1 * (promised - 1.0);
+    for (fell, goes_on) in [(threshold + 0.01, true), (threshold - 0.01, false)] {
+        let forged = WorkPoint {
+            error: Some(e1 * fell),
+            ..coarsest
+        };
+        let beyond = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[forged]);
+        assert_eq!(beyond[0], first, "the same first rung");
+        assert_eq!(
+            beyond.len() > 1,
+            goes_on,
+            "fell {fell}, threshold {threshold}: {beyond:?}"
+        );
+    }
+}
+
+/// Each added rung has more steps than the one before, even where the order
+/// study's ratio would round back to the same count: on a record whose two
+/// finest rungs are 1% apart, rung after rung from 23 steps is one step
+/// more (`round(23 x 1.01) = 23`), not the same run again.
+#[test]
+fn every_added_rung_has_more_steps_than_the_one_before() {
+    let scene = KeplerCircular;
+    let (mut record, work) = rkn6_on_the_circular_orbit();
+    let t_end = scene.default_t_end();
+    let coarsest = work.global[0];
+    assert_eq!(coarsest.steps, 23, "{coarsest:?}");
+    let measured: Vec<usize> = (0..record.rungs.len())
+        .filter(|&i| record.rungs[i].error.is_some())
+        .collect();
+    let [.., coarser, last] = measured.as_slice() else {
+        panic!("fewer than two rungs")
+    };
+    record.rungs[*coarser].steps = 100;
+    record.rungs[*last].steps = 101;
+    let beyond = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[coarsest]);
+    assert!(beyond.len() >= 2, "{beyond:?}");
+    for (k, p) in beyond.iter().enumerate() {
+        assert_eq!(p.steps, 24 + k as u64, "{beyond:?}");
+    }
+}
+
+/// The cap on a rung's force evaluations is the order study's: a rung
+/// whose predicted cost is the cap exactly is run (the order study refuses
+/// only a rung above it), and one a count above it is not. The finest rung
+/// is forged: its step count is one whose next rung at the order study's
+/// ratio is a power of two, `2^k`, so that a cost of `2^21 / 2^k` a step
+/// puts that rung on the cap to the last bit.
+#[test]
+fn a_rung_that_costs_the_cap_exactly_is_run() {
+    let scene = KeplerCircular;
+    let (record, work) = rkn6_on_the_circular_orbit();
+    let t_end = scene.default_t_end();
+    let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
+    let [.., coarser, last] = rungs.as_slice() else {
+        panic!("fewer than two rungs")
+    };
+    let ratio = last.steps as f64 / coarser.steps as f64;
+    let (steps, next) = (2..1000u64)
+        .map(|s| (s, (s as f64 * ratio).round() as u64))
+        .find(|&(s, n)| n > s && n.is_power_of_two())
+        .expect("a step count whose next rung is a power of two");
+    let cap = AUTO_MAX_RUNG_EVALUATIONS;
+    let on_the_cap = steps * (cap / next);
+    assert_eq!(on_the_cap as f64 / steps as f64 * next as f64, cap as f64);
+    for (evaluations, runs) in [(on_the_cap, true), (on_the_cap + 1, false)] {
+        let forged = WorkPoint {
+            steps,
+            h: t_end / steps as f64,
+            evaluations,
+            ..work.global[0]
+        };
+        let beyond = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[forged]);
+        assert_eq!(
+            beyond.first().map(|p| p.steps),
+            runs.then_some(next),
+            "{evaluations} evaluations over {steps} steps: {beyond:?}"
+        );
+    }
+}
+
+/// A rung that fell by exactly a tenth of what the order promises has
+/// fallen by at least that much: the ladder goes on. The error before it
+/// is forged so that the threshold lands on the first added rung's error
+/// to the last bit.
+#[test]
+fn a_rung_that_fell_by_exactly_the_threshold_keeps_the_ladder_going() {
+    let scene = KeplerCircular;
+    let (record, work) = rkn6_on_the_circular_orbit();
+    let t_end = scene.default_t_end();
+    let coarsest = work.global[0];
+    let first = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[coarsest])[0];
+    let e1 = first.error.expect("an error");
+    let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
+    let [.., coarser, last] = rungs.as_slice() else {
+        panic!("fewer than two rungs")
+    };
+    let promised = (last.steps as f64 / coarser.steps as f64).powi(6);
+    let divisor = 1.0 + 0.1 * (promised - 1.0);
+    // the doubles around e1 times the divisor, one whose quotient is e1
+    let mut before = e1 * divisor;
+    for _ in 0..8 {
+        if before / divisor == e1 {
+            break;
+        }
+        before = if before / divisor > e1 {
+            before.next_down()
+        } else {
+            before.next_up()
+        };
+    }
+    assert_eq!(
+        before / divisor,
+        e1,
+        "no double lands the threshold on {e1}"
+    );
+    let forged = WorkPoint {
+        error: Some(before),
+        ..coarsest
+    };
+    let beyond = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[forged]);
+    assert!(beyond.len() > 1, "{beyond:?}");
+}
