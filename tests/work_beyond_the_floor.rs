@@ -27,6 +27,23 @@ fn rkn6_on_the_circular_orbit() -> (OrderRecord, SchemeWork) {
     (record, work)
 }
 
+/// RKN6(4) on the circular orbit from its coarsest rung (23 steps, far
+/// above the target): the order study's record, that rung, the first rung
+/// the ladder adds after it, and the order study's ratio of steps between
+/// its two finest measured rungs (the ladder's ratio).
+fn rkn6_past_its_coarsest_rung() -> (OrderRecord, WorkPoint, WorkPoint, f64) {
+    let scene = KeplerCircular;
+    let (record, work) = rkn6_on_the_circular_orbit();
+    let coarsest = work.global[0];
+    let first = beyond_the_floor(&DPRKN6, &scene, &record, scene.default_t_end(), &[coarsest])[0];
+    let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
+    let [.., coarser, last] = rungs.as_slice() else {
+        panic!("fewer than two rungs")
+    };
+    let ratio = last.steps as f64 / coarser.steps as f64;
+    (record, coarsest, first, ratio)
+}
+
 /// RKN6(4)'s error on the circular orbit falls like `h^6` down to about
 /// `1e-14` (the round-off of some `1e4` steps), so `1e-12` lies on the
 /// truncation slope: the ladder stops at the first pair of rungs that both
@@ -237,17 +254,11 @@ fn the_ladder_stops_at_its_rung_limit_and_at_the_cap() {
 #[test]
 fn the_stall_threshold_is_a_tenth_of_what_the_order_promises() {
     let scene = KeplerCircular;
-    let (record, work) = rkn6_on_the_circular_orbit();
     let t_end = scene.default_t_end();
-    let coarsest = work.global[0];
-    let first = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[coarsest])[0];
+    let (record, coarsest, first, ratio) = rkn6_past_its_coarsest_rung();
     let e1 = first.error.expect("an error");
     assert!(e1 > 1e-6, "{first:?}");
-    let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
-    let [.., coarser, last] = rungs.as_slice() else {
-        panic!("fewer than two rungs")
-    };
-    let promised = (last.steps as f64 / coarser.steps as f64).powi(6);
+    let promised = ratio.powi(6);
     let threshold = 1.0 + 0.1 * (promised - 1.0);
     for (fell, goes_on) in [(threshold + 0.01, true), (threshold - 0.01, false)] {
         let forged = WorkPoint {
@@ -299,13 +310,8 @@ fn every_added_rung_has_more_steps_than_the_one_before() {
 #[test]
 fn a_rung_that_costs_the_cap_exactly_is_run() {
     let scene = KeplerCircular;
-    let (record, work) = rkn6_on_the_circular_orbit();
     let t_end = scene.default_t_end();
-    let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
-    let [.., coarser, last] = rungs.as_slice() else {
-        panic!("fewer than two rungs")
-    };
-    let ratio = last.steps as f64 / coarser.steps as f64;
+    let (record, coarsest, _, ratio) = rkn6_past_its_coarsest_rung();
     let (steps, next) = (2..1000u64)
         .map(|s| (s, (s as f64 * ratio).round() as u64))
         .find(|&(s, n)| n > s && n.is_power_of_two())
@@ -318,7 +324,7 @@ fn a_rung_that_costs_the_cap_exactly_is_run() {
             steps,
             h: t_end / steps as f64,
             evaluations,
-            ..work.global[0]
+            ..coarsest
         };
         let beyond = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[forged]);
         assert_eq!(
@@ -336,16 +342,10 @@ fn a_rung_that_costs_the_cap_exactly_is_run() {
 #[test]
 fn a_rung_that_fell_by_exactly_the_threshold_keeps_the_ladder_going() {
     let scene = KeplerCircular;
-    let (record, work) = rkn6_on_the_circular_orbit();
     let t_end = scene.default_t_end();
-    let coarsest = work.global[0];
-    let first = beyond_the_floor(&DPRKN6, &scene, &record, t_end, &[coarsest])[0];
+    let (record, coarsest, first, ratio) = rkn6_past_its_coarsest_rung();
     let e1 = first.error.expect("an error");
-    let rungs: Vec<_> = record.rungs.iter().filter(|r| r.error.is_some()).collect();
-    let [.., coarser, last] = rungs.as_slice() else {
-        panic!("fewer than two rungs")
-    };
-    let promised = (last.steps as f64 / coarser.steps as f64).powi(6);
+    let promised = ratio.powi(6);
     let divisor = 1.0 + 0.1 * (promised - 1.0);
     // the doubles around e1 times the divisor, one whose quotient is e1
     let mut before = e1 * divisor;
