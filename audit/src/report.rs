@@ -692,7 +692,7 @@ fn cap_section(races: &[SceneRace]) -> String {
             let _ = writeln!(
                 s,
                 "On `{}` (end time {:.0}) {} of brahe's runs, at tolerances from {first:.2e} to {last:.2e},\n\
-                 accept {fewest} steps, as many as steps of {cap} take to the end (`ceil(t_end / max_step)`):\n\
+                 accept {fewest} steps, as many as steps of {cap} time units take to the end (`ceil(t_end / max_step)`):\n\
                  there the cap, not brahe's estimate, sets the steps.",
                 race.scene,
                 race.t_end,
