@@ -19,6 +19,7 @@ pub fn adaptive_section(records: &AdaptiveRecords) -> String {
     let mut out = String::from("\n## Adaptive step control\n\n");
     out.push_str(&method());
     out.push_str(&summary_table(&records.ladders));
+    out.push_str(&resolution(&records.ladders, &records.slipped));
     out.push_str("\nEvery tolerance is on [a detail page](details/adaptive-tolerances.md).\n");
     out
 }
@@ -58,6 +59,93 @@ fn method() -> String {
          the round trip to miss by about the global error.\n\n",
         1.0 / ROUND_OFF_SHARE,
         sci(GEOMETRY_TOLERANCE),
+    )
+}
+
+/// Whether the interval `ci` of an exponent holds the claim of a controller
+/// that assumes its estimate one power below or above `power`:
+/// `order / (power - 1)` (for `power > 1`) or `order / (power + 1)`.
+pub fn holds_a_neighbour(order: u32, power: u32, ci: [f64; 2]) -> bool {
+    let (p, m) = (f64::from(order), f64::from(power));
+    let below = (power > 1).then(|| p / (m - 1.0));
+    [below, Some(p / (m + 1.0))]
+        .into_iter()
+        .flatten()
+        .any(|k| ci[0] <= k && k <= ci[1])
+}
+
+/// What a passing exponent tells: the ladders whose interval holds a
+/// neighbouring power's claim as well, and the slipped controller's
+/// ladders.
+fn resolution(ladders: &[ToleranceLadderRecord], slipped: &[ToleranceLadderRecord]) -> String {
+    let agreeing: Vec<&ToleranceLadderRecord> = ladders
+        .iter()
+        .filter(|r| {
+            r.proportionality
+                .as_ref()
+                .is_some_and(|p| p.theory.is_some() && p.agrees())
+        })
+        .collect();
+    // grouped by integrator, in table order
+    let mut unresolved: Vec<(&str, Vec<String>)> = Vec::new();
+    for r in &agreeing {
+        let holds = r
+            .proportionality
+            .as_ref()
+            .is_some_and(|p| holds_a_neighbour(r.claims.order, r.claims.estimate_power, p.ci95));
+        if !holds {
+            continue;
+        }
+        let scene = format!("`{}`", r.scene);
+        match unresolved
+            .iter_mut()
+            .find(|(name, _)| *name == r.integrator)
+        {
+            Some((_, scenes)) => scenes.push(scene),
+            None => unresolved.push((r.integrator, vec![scene])),
+        }
+    }
+    let count: usize = unresolved.iter().map(|(_, scenes)| scenes.len()).sum();
+    let unresolved: Vec<String> = unresolved
+        .into_iter()
+        .map(|(name, scenes)| format!("{name} on {}", scenes.join(", ")))
+        .collect();
+    let slips: Vec<String> = slipped
+        .iter()
+        .map(|r| {
+            let k = r
+                .proportionality
+                .as_ref()
+                .map_or("no exponent".into(), |p| {
+                    format!(
+                        "{} [{}, {}]",
+                        order(p.exponent),
+                        order(p.ci95[0]),
+                        order(p.ci95[1])
+                    )
+                });
+            format!("`{}` {k}, {}", r.scene, r.verdict.name())
+        })
+        .collect();
+    format!(
+        "\nWhat a pass tells. A controller that assumed its estimate one power lower or higher \
+         would claim `p/(m-1)` or `p/(m+1)`, `p/(m(m-1))` and `p/(m(m+1))` away from `p/m`, and \
+         its steps would follow the estimate's own power just the same (a controller of any \
+         power settles where its estimate is a fixed fraction of the tolerance): only the \
+         exponent's interval tells those claims apart. Of the {} ladders above whose exponent \
+         agrees with its claim, {} have an interval that holds a neighbour's claim as well: \
+         {}. There the errors agree with the claim without telling the controller's power from \
+         its neighbours'. DPRKN6(4) built with a controller for `h^4` (claiming `6/4`: the \
+         estimate's order taken for its power) shows what that lets through; its exponent and \
+         verdict on each scene: {}.\n",
+        agreeing.len(),
+        count,
+        if unresolved.is_empty() {
+            "none".to_string()
+        } else {
+            unresolved.join("; ")
+        },
+        slips.join("; "),
     )
 }
 

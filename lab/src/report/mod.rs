@@ -12,7 +12,9 @@ pub mod round_off;
 mod summary;
 mod work_precision;
 
-pub use adaptive::{adaptive_section, ladder_table, summary_table as adaptive_summary_table};
+pub use adaptive::{
+    adaptive_section, holds_a_neighbour, ladder_table, summary_table as adaptive_summary_table,
+};
 pub use hard_cases::{
     eccentric_energy_grid, eccentric_order_table, escape_table, following_rungs, following_table,
     hard_cases_section, predicted_boundary, round_off_table,

@@ -13,8 +13,20 @@ use stepladder::internals::adaptive::{
 use stepladder::internals::parallel::parallel_map;
 use stepladder::scene::{AnyScene, Scene, SceneVisitor};
 use stepladder::scheme::{
-    AdaptiveIntegrator, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, DPRKN8_COMPENSATED, DPRKN12_ADAPTIVE,
-    DPRKN12_COMPENSATED,
+    AdaptiveIntegrator, Controller, DPRKN6_ADAPTIVE, DPRKN8_ADAPTIVE, DPRKN8_COMPENSATED,
+    DPRKN12_ADAPTIVE, DPRKN12_COMPENSATED, EmbeddedPair,
+};
+
+/// DPRKN6(4) with the commonest slip in a pair's step law: its controller
+/// built for an estimate of power `q = 4` where the estimate behaves like
+/// `h^(q+1) = h^5`, so that it claims `error ~ TOL^(6/4)`. A controller of
+/// any power settles where its estimate is a fixed fraction of the
+/// tolerance, so its steps, and its error, still follow the estimate's own
+/// power: only the tolerance ladder's exponent can refute the claim.
+pub const SLIPPED_PAIR: EmbeddedPair<6> = EmbeddedPair {
+    name: "DPRKN6(4), controller for h^4",
+    controller: Controller::predictive(4),
+    ..DPRKN6_ADAPTIVE
 };
 
 /// Which adaptive integrator a job runs.
@@ -100,6 +112,9 @@ pub struct AdaptiveRecords {
     /// machine); empty for a peer, whose runs the race times where it needs
     /// them ([`crate::suite::race`]).
     pub point_seconds: Vec<Vec<f64>>,
+    /// [`SLIPPED_PAIR`]'s ladder on every built-in scene: how often its
+    /// wrong claim passes.
+    pub slipped: Vec<ToleranceLadderRecord>,
 }
 
 /// The fastest of `repeats` runs of an integrator at each tolerance of a
@@ -180,10 +195,17 @@ pub fn adaptive_study(threads: usize) -> Result<AdaptiveRecords, Error> {
         },
         &|_, _| {},
     );
+    let slipped = parallel_map(
+        &scenes,
+        threads.max(1),
+        |s| s.visit(LadderOnScene(&SLIPPED_PAIR, &spec)),
+        &|_, _| {},
+    );
     let mut records = AdaptiveRecords {
         ladders: Vec::with_capacity(done.len()),
         times: Vec::with_capacity(done.len()),
         point_seconds: Vec::with_capacity(done.len()),
+        slipped: slipped.into_iter().collect::<Result<_, _>>()?,
     };
     for (d, (i, s)) in done.into_iter().zip(jobs) {
         let (r, t) = d?;

@@ -11,4 +11,5 @@ mod held_out;
 mod markdown;
 mod peer;
 mod reached_for_good;
+mod resolution;
 mod scenes;
