@@ -1,6 +1,7 @@
 //! The report's "Adaptive step control" section: the tolerance ladders of
-//! the crate's own DPRKN6(4) and DPRKN8(6) pairs and the peers
-//! (deterministic), and their wall times (machine-dependent).
+//! the crate's own pairs and the peers, what a passing exponent tells
+//! (with a pair whose controller assumes the wrong power) (deterministic),
+//! and their wall times (machine-dependent).
 
 use super::markdown::{Table, opt, order, sci};
 use crate::suite::adaptive::AdaptiveRecords;

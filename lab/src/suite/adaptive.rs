@@ -1,7 +1,9 @@
 //! The tolerance ladder of every adaptive integrator on every built-in
 //! scene: the crate's own pairs (DPRKN6(4), DPRKN8(6) and DPRKN12(10), the
 //! last two also with compensated state updates) and the peers of other
-//! crates, through the same [`AdaptiveIntegrator`] trait.
+//! crates, through the same [`AdaptiveIntegrator`] trait; and
+//! [`SLIPPED_PAIR`], whose controller assumes the wrong power, to show what
+//! a passing exponent does not rule out.
 
 use crate::peer::{IntegratorVisitor, PEERS, PeerId};
 use crate::suite::work_precision::PEER_REPEATS;
