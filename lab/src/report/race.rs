@@ -317,7 +317,9 @@ pub fn race_section(race: &RaceRecords) -> String {
          RKN12(10), whose build (over three hundred crates) does not fit this one, runs in \
          `audit/AUDIT.md` against the crate's two RKN12(10) pairs on these four scenes and \
          references (`lab/references/`, written by `stepladder reference`), each judged by \
-         its error at the end time.\n\n",
+         its error at the end time, and also with its default step cap lifted (900 time \
+         units, which on the outer solar system in days sets brahe's steps at the middle \
+         tolerances).\n\n",
         sci(NBODY_FIRST_TOLERANCE),
         sci(NBODY_TOLERANCES[NBODY_TOLERANCES.len() - 1]),
         NBODY_FIRST_STEPS,
