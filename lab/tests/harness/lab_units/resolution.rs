@@ -16,8 +16,9 @@ fn an_interval_holds_a_neighbour_when_it_reaches_p_over_m_plus_or_minus_one() {
     assert!(holds_a_neighbour(6, 5, [1.3, 1.5]));
     assert!(holds_a_neighbour(6, 5, [1.0, 1.1]));
     assert!(!holds_a_neighbour(6, 5, [1.001, 1.499]));
-    // m = 1 has only the neighbour above, p / 2
-    assert!(!holds_a_neighbour(2, 1, [1.5, 1e9]));
+    // m = 1 has only the neighbour above, p / 2: no `p / 0 = inf` below,
+    // even for an interval open above
+    assert!(!holds_a_neighbour(2, 1, [1.5, f64::INFINITY]));
     assert!(holds_a_neighbour(2, 1, [0.9, 1.1]));
 }
 
