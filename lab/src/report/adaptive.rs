@@ -79,22 +79,18 @@ pub fn holds_a_neighbour(order: u32, power: u32, ci: [f64; 2]) -> bool {
 /// neighbouring power's claim as well, and the slipped controller's
 /// ladders.
 fn resolution(ladders: &[ToleranceLadderRecord], slipped: &[ToleranceLadderRecord]) -> String {
-    let agreeing: Vec<&ToleranceLadderRecord> = ladders
+    // the ladders whose exponent agrees with a claimed one, with its interval
+    let agreeing: Vec<(&ToleranceLadderRecord, [f64; 2])> = ladders
         .iter()
-        .filter(|r| {
-            r.proportionality
-                .as_ref()
-                .is_some_and(|p| p.theory.is_some() && p.agrees())
+        .filter_map(|r| {
+            let p = r.proportionality.as_ref()?;
+            (p.theory.is_some() && p.agrees()).then_some((r, p.ci95))
         })
         .collect();
     // grouped by integrator, in table order
     let mut unresolved: Vec<(&str, Vec<String>)> = Vec::new();
-    for r in &agreeing {
-        let holds = r
-            .proportionality
-            .as_ref()
-            .is_some_and(|p| holds_a_neighbour(r.claims.order, r.claims.estimate_power, p.ci95));
-        if !holds {
+    for &(r, ci) in &agreeing {
+        if !holds_a_neighbour(r.claims.order, r.claims.estimate_power, ci) {
             continue;
         }
         let scene = format!("`{}`", r.scene);
