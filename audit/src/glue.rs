@@ -677,7 +677,7 @@ pub fn brahe_rkn1210(
 /// other setting the default: what the cap of 900 time units
 /// (`IntegratorConfig::default`, config.rs) does to a scene whose steps
 /// would exceed it, the outer solar system in days.
-pub fn brahe_rkn1210_uncapped(
+pub(crate) fn brahe_rkn1210_uncapped(
     q: &mut [f64],
     v: &mut [f64],
     t0: f64,
@@ -693,7 +693,7 @@ pub fn brahe_rkn1210_uncapped(
 }
 
 /// brahe's default step cap (`IntegratorConfig::default().max_step`).
-pub fn brahe_max_step() -> Option<f64> {
+pub(crate) fn brahe_max_step() -> Option<f64> {
     brahe::integrators::IntegratorConfig::default().max_step
 }
 

@@ -680,6 +680,7 @@ fn cap_section(races: &[SceneRace]) -> String {
          exceed {cap} days, {share:.2} of Jupiter's period.\n",
         share = cap / OuterSolarSystem::default().period(),
     );
+    let mut any_held = false;
     for race in races {
         let fewest = (race.t_end / cap).ceil() as u64;
         let held: Vec<f64> = race.contenders[0]
@@ -689,6 +690,7 @@ fn cap_section(races: &[SceneRace]) -> String {
             .map(|p| p.tolerance)
             .collect();
         if let (Some(first), Some(last)) = (held.first(), held.last()) {
+            any_held = true;
             let _ = writeln!(
                 s,
                 "On `{}` (end time {:.0}) {} of brahe's runs, at tolerances from {first:.2e} to {last:.2e},\n\
@@ -700,12 +702,14 @@ fn cap_section(races: &[SceneRace]) -> String {
             );
         }
     }
-    s.push_str(
-        "Called directly on the outer solar system at 1e-7, with a force written apart from stepladder\n\
-         (`tests/independent.rs`), brahe steps exactly the cap every step but the first (the caller's\n\
-         proposal, cut down from the whole interval by rejections: the cap bounds only the proposals\n\
-         brahe returns) and the last (cut to land on the end time).\n",
-    );
+    if any_held {
+        s.push_str(
+            "Called directly on the outer solar system at 1e-7, with a force written apart from stepladder\n\
+             (`tests/independent.rs`), brahe steps exactly the cap every step but the first (the caller's\n\
+             proposal, cut down from the whole interval by rejections: the cap bounds only the proposals\n\
+             brahe returns) and the last (cut to land on the end time).\n",
+        );
+    }
     // a scene where no run changes without the cap needs no row
     let same_runs = |a: &Contender, b: &Contender| {
         let key = |c: &Contender| -> Vec<_> {

@@ -610,7 +610,7 @@ fn brahe_outer_steps(max_step: Option<f64>, tol: f64) -> Vec<f64> {
                 dy[3 * i + k] = y[18 + 3 * i + k];
             }
             for j in (0..6).filter(|&j| j != i) {
-                let d: Vec<f64> = (0..3).map(|k| r(j, k) - r(i, k)).collect();
+                let d: [f64; 3] = std::array::from_fn(|k| r(j, k) - r(i, k));
                 let dist3 = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).powf(1.5);
                 for k in 0..3 {
                     dy[18 + 3 * i + k] += M[i].sqrt() * G * M[j] * d[k] / dist3;
