@@ -4,13 +4,14 @@
 //! and their wall times (machine-dependent).
 
 use super::markdown::{Table, opt, order, sci};
-use crate::suite::adaptive::AdaptiveRecords;
+use crate::suite::adaptive::{AdaptiveRecords, SLIPPED_PAIR};
 use std::fmt::Write as _;
 use stepladder::internals::adaptive::ladder::{
     ENERGY_PERIODS, GEOMETRY_TOLERANCE, ROUND_OFF_SHARE,
 };
 use stepladder::internals::adaptive::record::{MIN_FIT_POINTS, ToleranceLadderRecord};
 use stepladder::internals::tolerance::ERROR_CEILING;
+use stepladder::scheme::AdaptiveIntegrator;
 
 /// The tolerances whose costs the summary table shows.
 pub const SHOWN_TOLERANCES: [f64; 3] = [1e-6, 1e-9, 1e-12];
@@ -124,6 +125,7 @@ fn resolution(ladders: &[ToleranceLadderRecord], slipped: &[ToleranceLadderRecor
             format!("`{}` {k}, {}", r.scene, r.verdict.name())
         })
         .collect();
+    let slipped_claims = SLIPPED_PAIR.claims();
     format!(
         "\nWhat a pass tells. A controller that assumed its estimate one power lower or higher \
          would claim `p/(m-1)` or `p/(m+1)`, `p/(m(m-1))` and `p/(m(m+1))` away from `p/m`, and \
@@ -132,9 +134,9 @@ fn resolution(ladders: &[ToleranceLadderRecord], slipped: &[ToleranceLadderRecor
          exponent's interval tells those claims apart. Of the {} ladders above whose exponent \
          agrees with its claim, {} have an interval that holds a neighbour's claim as well: \
          {}. There the errors agree with the claim without telling the controller's power from \
-         its neighbours'. DPRKN6(4) built with a controller for `h^4` (claiming `6/4`: the \
-         estimate's order taken for its power) shows what that lets through; its exponent and \
-         verdict on each scene: {}.\n",
+         its neighbours'. DPRKN6(4) built with a controller for `h^{m}` (claiming `{p}/{m}`: \
+         the estimate's order taken for its power) shows what that lets through; its exponent \
+         and verdict on each scene: {}.\n",
         agreeing.len(),
         count,
         if unresolved.is_empty() {
@@ -143,6 +145,8 @@ fn resolution(ladders: &[ToleranceLadderRecord], slipped: &[ToleranceLadderRecor
             unresolved.join("; ")
         },
         slips.join("; "),
+        p = slipped_claims.order,
+        m = slipped_claims.estimate_power,
     )
 }
 
