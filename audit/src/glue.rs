@@ -648,6 +648,8 @@ pub fn brahe_rkn1210_step(q: &mut [f64], v: &mut [f64], h: f64, force: &Force<f6
     match q.len() {
         1 => run!(1, 2),
         2 => run!(2, 4),
+        14 => run!(14, 28),
+        18 => run!(18, 36),
         d => unsupported(d),
     }
 }

@@ -1265,10 +1265,7 @@ pub fn brahe_rkn1210_fixed() -> Audit {
             minimum_evaluations: 17,
             test: "brahe_rkn1210_fixed",
         },
-        &BlackBox::new(
-            claims("brahe-rkn1210", 12, false, false, 17, false, "brahe 1.8.1"),
-            glue::brahe_rkn1210_step,
-        ),
+        &brahe_rkn1210_step(),
         // the order is the harness's limit, not the crate's: see `why`
         except(
             [Inconclusive, Pass, Pass, Pass, Pass],
@@ -1276,6 +1273,15 @@ pub fn brahe_rkn1210_fixed() -> Audit {
             &[],
         ),
     ))
+}
+
+/// brahe's step as a fixed-step black box: one `step` of RKN1210 at the
+/// `h` given, every step accepted (see the glue).
+pub(crate) fn brahe_rkn1210_step() -> BlackBox<f64, stepladder::scheme::StepFn<f64>> {
+    BlackBox::new(
+        claims("brahe-rkn1210", 12, false, false, 17, false, "brahe 1.8.1"),
+        glue::brahe_rkn1210_step,
+    )
 }
 
 /// brahe's RKN12(10) under its own step control, driven to the end time

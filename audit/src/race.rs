@@ -20,7 +20,9 @@
 //! How far that interpolation moves with the grid's offset is measured here
 //! too ([`Contender::decade_spread`]), and so is what brahe's default step
 //! cap does to its cost: brahe runs the same ladders again with the cap
-//! lifted ([`SceneRace::uncapped`]), beside the race, not in it.
+//! lifted ([`SceneRace::uncapped`]), beside the race, not in it. Beside it
+//! too, brahe's own step at equal steps ([`SceneRace::uniform`]): what the
+//! step control is worth on each scene.
 //!
 //! The N-body references are the repository's race's, read from
 //! `lab/references/` (written by `stepladder reference`; a harness test
@@ -31,7 +33,9 @@
 use crate::target_cost::{self, Reach, Run, WINDOW_DECADES};
 use stepladder::internals::cost::work_points::cost_to_reach;
 use stepladder::internals::tolerance::rounding_distance;
-use stepladder::scene::{KeplerCircular, KeplerEccentric, OuterSolarSystem, Pleiades, Scene};
+use stepladder::scene::{
+    Counted, KeplerCircular, KeplerEccentric, OuterSolarSystem, Pleiades, Scene,
+};
 use stepladder::scheme::{
     AdaptiveBlackBox, AdaptiveIntegrator, AdaptiveRun, DPRKN12_ADAPTIVE, DPRKN12_COMPENSATED,
     RunEnd,
@@ -245,6 +249,8 @@ pub struct SceneRace {
     /// one of them: the race takes each crate as its defaults leave it, and
     /// this measures what one of brahe's defaults does to its cost.
     pub uncapped: Contender,
+    /// brahe's step at equal steps, beside the race too.
+    pub uniform: UniformLadder,
 }
 
 impl SceneRace {
@@ -257,6 +263,105 @@ impl SceneRace {
 /// Whether a reference whose own error is `reference_error` judges `target`.
 fn judged(reference_error: f64, target: f64) -> bool {
     reference_error <= REFERENCE_SHARE * target
+}
+
+/// The order by which equal steps of the tableau predict a target's cost.
+const UNIFORM_ORDER: f64 = 12.0;
+
+/// One run at equal steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UniformPoint {
+    pub steps: u64,
+    /// Force evaluations, counted on the force.
+    pub evaluations: u64,
+    /// The error; `None` when the run did not reach the end time.
+    pub error: Option<f64>,
+}
+
+/// brahe's own step (every step accepted, the glue's
+/// `brahe_rkn1210_step`) at `N` equal steps over the scene's interval,
+/// `N = 1, 2, ...`: the tableau without its step control, so that the
+/// race's costs can be read against what equal steps cost. Each next count
+/// is the larger of `N + 1` and `10^(1 / (8 * 12)) N` rounded down: the
+/// error of a twelfth-order step falls like `N^-12`, so consecutive counts
+/// are at most an eighth of a decade of error apart (or one step), as dense
+/// as the race's [`PER_DECADE`] tolerances. The
+/// ladder ends at the first run whose error is [`WINDOW_DECADES`] below the
+/// smallest judged target (as the race's ladders do), that fails to reach
+/// the end, or before a run that would spend more evaluations than the
+/// dearest run of any contender on the scene: equal steps that cost more
+/// than every adaptive run are cheaper nowhere the race looks.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UniformLadder {
+    pub points: Vec<UniformPoint>,
+}
+
+impl UniformLadder {
+    /// Force evaluations to reach `target`, estimated as the contenders'
+    /// are.
+    pub fn evaluations(&self, target: f64) -> Reach {
+        let runs: Vec<Run> = self
+            .points
+            .iter()
+            .filter_map(|p| {
+                p.error.map(|error| Run {
+                    cost: p.evaluations as f64,
+                    evaluations: p.evaluations,
+                    error,
+                })
+            })
+            .collect();
+        target_cost::target_cost(&runs, target, UNIFORM_ORDER)
+    }
+}
+
+/// The step count after `steps` on the equal-step ladder (see
+/// [`UniformLadder`]).
+fn next_count(steps: u64) -> u64 {
+    let ratio = 10f64.powf(1.0 / (PER_DECADE as f64 * UNIFORM_ORDER));
+    (steps + 1).max((steps as f64 * ratio).floor() as u64)
+}
+
+/// The equal-step ladder on `scene` (see [`UniformLadder`]), spending at
+/// most `budget` evaluations a run.
+fn uniform_ladder<S: Scene<D>, const D: usize>(
+    scene: &S,
+    t_end: f64,
+    smallest: f64,
+    budget: u64,
+    error: &impl Fn(&State<D>) -> Option<f64>,
+) -> UniformLadder {
+    let step = crate::methods::brahe_rkn1210_step();
+    let per_step = stepladder::scheme::Scheme::meta(&step).force_evaluations as u64;
+    let mut points = Vec::new();
+    let mut steps = 1;
+    while steps * per_step <= budget {
+        let counted = Counted::new(scene);
+        let mut end = None;
+        let outcome = stepladder::run::integrate(
+            &step,
+            &counted,
+            &scene.initial(),
+            t_end / steps as f64,
+            steps,
+            |n, _, s| {
+                if n == steps {
+                    end = Some(*s);
+                }
+            },
+        );
+        let error = end.filter(|_| outcome.completed()).and_then(|s| error(&s));
+        points.push(UniformPoint {
+            steps,
+            evaluations: counted.evaluations(),
+            error,
+        });
+        if error.is_none_or(|e| e <= smallest * 10f64.powf(-WINDOW_DECADES)) {
+            break;
+        }
+        steps = next_count(steps);
+    }
+    UniformLadder { points }
 }
 
 /// brahe's pair as the race runs it.
@@ -311,7 +416,7 @@ impl<'a, const D: usize> Runner<'a, D> {
 fn ladders<const D: usize>(
     runners: &[Runner<'_, D>],
     smallest: f64,
-    error: &impl Fn(&AdaptiveRun<D>) -> Option<f64>,
+    error: &impl Fn(&State<D>) -> Option<f64>,
 ) -> Vec<Contender> {
     let mut contenders: Vec<Contender> = runners
         .iter()
@@ -353,7 +458,11 @@ fn ladders<const D: usize>(
                 accepted: run.accepted,
                 rejected: run.rejected,
                 seconds,
-                error: if reached { error(&run) } else { None },
+                error: run
+                    .trajectory
+                    .last()
+                    .filter(|_| reached)
+                    .and_then(|(_, end)| error(end)),
             };
             contenders[i].points.push(point);
             if point
@@ -375,8 +484,10 @@ fn race_on<S: Scene<D>, const D: usize>(
     t_end: f64,
     reference: String,
     reference_error: f64,
-    error: impl Fn(&AdaptiveRun<D>) -> Option<f64>,
+    reference_state: &State<D>,
 ) -> SceneRace {
+    let error =
+        |end: &State<D>| Some(scene.phase_distance(end, reference_state)).filter(|e| e.is_finite());
     let smallest = TARGETS
         .iter()
         .copied()
@@ -390,6 +501,13 @@ fn race_on<S: Scene<D>, const D: usize>(
         Runner::new(&uncapped, scene, t_end),
     ];
     let mut contenders = ladders(&runners, smallest, &error);
+    let budget = contenders
+        .iter()
+        .flat_map(|c| &c.points)
+        .map(|p| p.evaluations)
+        .max()
+        .unwrap_or(0);
+    let uniform = uniform_ladder(scene, t_end, smallest, budget, &error);
     let uncapped = contenders.pop().expect("the uncapped runner's ladder");
     SceneRace {
         scene: scene.meta().id,
@@ -398,17 +516,8 @@ fn race_on<S: Scene<D>, const D: usize>(
         reference_error,
         contenders,
         uncapped,
+        uniform,
     }
-}
-
-/// The distance at the end time to `reference`.
-fn at_end<S: Scene<D>, const D: usize>(
-    scene: &S,
-    run: &AdaptiveRun<D>,
-    reference: &State<D>,
-) -> Option<f64> {
-    let (_, end) = run.trajectory.last()?;
-    Some(scene.phase_distance(end, reference)).filter(|e| e.is_finite())
 }
 
 /// The race on every scene, Kepler orbits first; an error when a
@@ -433,28 +542,103 @@ pub fn race() -> Result<Vec<SceneRace>, String> {
             circular_end,
             "the exact solution, rounded to doubles".to_string(),
             rounding_distance(&circular, &exact_circular),
-            |run| at_end(&circular, run, &exact_circular),
+            &exact_circular,
         ),
         race_on(
             &eccentric,
             eccentric_end,
             "the exact solution, rounded to doubles".to_string(),
             rounding_distance(&eccentric, &exact_eccentric),
-            |run| at_end(&eccentric, run, &exact_eccentric),
+            &exact_eccentric,
         ),
         race_on(
             &stars,
             star_reference.t_end,
             star_reference.source.clone(),
             star_reference.accuracy,
-            |run| at_end(&stars, run, &star_end),
+            &star_end,
         ),
         race_on(
             &planets,
             planet_reference.t_end,
             planet_reference.source.clone(),
             planet_reference.accuracy,
-            |run| at_end(&planets, run, &planet_end),
+            &planet_end,
         ),
     ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Consecutive counts of the equal-step ladder are at most an eighth
+    /// of a decade of a twelfth-order error apart, `(N / next)^12 >=
+    /// 10^(-1/8)`, except below `1 / (10^(1/96) - 1) = 41.2` steps, where
+    /// one step is more than that and the next count is `N + 1`; and no
+    /// closer than they need be: one count further would be more than an
+    /// eighth apart.
+    #[test]
+    fn equal_step_counts_are_an_eighth_of_a_decade_apart() {
+        let eighth = 10f64.powf(-1.0 / PER_DECADE as f64);
+        let fall = |n: u64, m: u64| (n as f64 / m as f64).powf(UNIFORM_ORDER);
+        let mut n = 1;
+        while n < 100_000 {
+            let next = next_count(n);
+            if n <= 41 {
+                assert_eq!(next, n + 1);
+                assert!(fall(n, next) < eighth, "{n} -> {next}");
+            } else {
+                assert!(fall(n, next) >= eighth, "{n} -> {next}");
+                assert!(fall(n, next + 1) < eighth, "{n} -> {next}");
+            }
+            n = next;
+        }
+    }
+
+    /// brahe's step and stepladder's own DPRKN12 table, the same tableau in
+    /// two implementations, end the outer solar system at 16 equal steps
+    /// within rounding of each other, far closer than either is to the
+    /// reference: the equal-step figures are the tableau's, not one
+    /// implementation's.
+    #[test]
+    fn equal_steps_of_brahe_and_of_stepladder_agree() {
+        let scene = OuterSolarSystem::default();
+        let reference = reference::<18>(scene.meta().id).expect("the reference");
+        let steps = 16;
+        let h = reference.t_end / steps as f64;
+        let end = |scheme: &dyn Fn(&mut Option<State<18>>)| {
+            let mut end = None;
+            scheme(&mut end);
+            end.expect("the run reaches the end")
+        };
+        let brahe = end(&|out| {
+            let step = crate::methods::brahe_rkn1210_step();
+            stepladder::run::integrate(&step, &scene, &scene.initial(), h, steps, |n, _, s| {
+                if n == steps {
+                    *out = Some(*s);
+                }
+            });
+        });
+        let own = end(&|out| {
+            stepladder::run::integrate(
+                &stepladder::scheme::DPRKN12,
+                &scene,
+                &scene.initial(),
+                h,
+                steps,
+                |n, _, s| {
+                    if n == steps {
+                        *out = Some(*s);
+                    }
+                },
+            );
+        });
+        let apart = scene.phase_distance(&brahe, &own);
+        let error = scene.phase_distance(&brahe, &reference.state());
+        // 16 steps of 17 stages over states of order 30 AU: rounding of a
+        // few hundred operations, 1e-13 at most
+        assert!(apart < 1e-12, "{apart:e}");
+        assert!(error > 1e3 * apart, "{error:e} against {apart:e}");
+    }
 }

@@ -547,10 +547,16 @@ impl Standing {
     }
 
     fn cell(&self) -> String {
+        self.cell_between("brahe", "stepladder")
+    }
+
+    /// The figure and who is cheaper, the ratio being `numerator`'s cost
+    /// over `denominator`'s.
+    fn cell_between(&self, numerator: &str, denominator: &str) -> String {
         let outcome = match self.resolved() {
-            Some(true) => "stepladder cheaper",
-            Some(false) => "brahe cheaper",
-            None => "not resolved",
+            Some(true) => format!("{denominator} cheaper"),
+            Some(false) => format!("{numerator} cheaper"),
+            None => "not resolved".to_string(),
         };
         format!("{}: {outcome}", self.figure())
     }
@@ -569,14 +575,83 @@ fn standing_of(
     race: &SceneRace,
     cost: impl Fn(&Contender) -> Reach,
 ) -> Option<Standing> {
-    let brahe = cost(peer);
-    let own = race.contenders[1..]
+    standing_against(&cost(peer), race, cost)
+}
+
+/// `reach`'s standing against stepladder's cheaper pair by `cost`; `None`
+/// unless both reach the target.
+fn standing_against(
+    reach: &Reach,
+    race: &SceneRace,
+    cost: impl Fn(&Contender) -> Reach,
+) -> Option<Standing> {
+    let (ratio, interval) = target_cost::ratio(reach, &best_own(race, cost)?)?;
+    Some(Standing { ratio, interval })
+}
+
+/// The cheaper of stepladder's pairs by `cost`, where one reaches the
+/// target.
+fn best_own(race: &SceneRace, cost: impl Fn(&Contender) -> Reach) -> Option<Reach> {
+    race.contenders[1..]
         .iter()
         .map(&cost)
         .filter(|r| r.cost().is_some())
-        .min_by(|a, b| a.cost().partial_cmp(&b.cost()).expect("finite costs"))?;
-    let (ratio, interval) = target_cost::ratio(&brahe, &own)?;
-    Some(Standing { ratio, interval })
+        .min_by(|a, b| a.cost().partial_cmp(&b.cost()).expect("finite costs"))
+}
+
+/// What equal steps of the same tableau cost at every judged target,
+/// against brahe and stepladder's cheaper pair, and where they are cheaper
+/// than the pair beyond the scatter.
+fn uniform_section(races: &[SceneRace]) -> String {
+    let mut s = String::from(
+        "\n**Equal steps.** The same tableau without step control: brahe's own step, every step\n\
+         accepted, at `N` equal steps over the interval, `N` = 1, 2, ... (each next count the larger of\n\
+         `N + 1` and `10^(1/96) N` rounded down, at most an eighth of a decade of a twelfth-order error), until the error is a\n\
+         decade below the smallest judged target or a run would cost more than the dearest adaptive run\n\
+         on the scene; its evaluations to a target are estimated as the contenders' are. It is a\n\
+         reference beside the race, not a contender: the count that reaches a target is known only in\n\
+         hindsight (a user of equal steps finds it by trial, or by a ladder like this one). The last column\n\
+         divides them by the cheaper of stepladder's pairs: above 1 the pair is cheaper, below 1 equal\n\
+         steps are. Step control pays where the motion's time scale changes along the run; where it\n\
+         hardly changes, equal steps are the best steps, and what a controller spends to find and hold\n\
+         them (a first step off the best one, rejected attempts, a short last step, steps that follow\n\
+         its estimate's swings) is not won back.\n\n\
+         | scene | target | equal steps | brahe RKN1210 | cheaper of stepladder's pairs | equal steps / best |\n\
+         | --- | --- | --- | --- | --- | --- |\n",
+    );
+    let mut cheaper: Vec<String> = Vec::new();
+    for race in races {
+        for target in TARGETS.into_iter().filter(|&t| race.judges(t)) {
+            let uniform = race.uniform.evaluations(target);
+            let standing = standing_against(&uniform, race, |c| c.evaluations(target));
+            if let Some(st) = standing.filter(|st| st.resolved() == Some(false)) {
+                cheaper.push(format!(
+                    "`{}` at {target:.0e} ({})",
+                    race.scene,
+                    st.figure()
+                ));
+            }
+            let _ = writeln!(
+                s,
+                "| `{}` | {target:.0e} | {} | {} | {} | {} |",
+                race.scene,
+                reach(uniform),
+                reach(race.contenders[0].evaluations(target)),
+                best_own(race, |c| c.evaluations(target)).map_or("not reached".to_string(), reach),
+                standing.map_or("-".to_string(), |st| st.cell_between("equal steps", "pair")),
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\nEqual steps are cheaper than stepladder's pairs beyond the scatter {}.",
+        if cheaper.is_empty() {
+            "nowhere".to_string()
+        } else {
+            format!("on {}", cheaper.join(", "))
+        }
+    );
+    s
 }
 
 /// Per scene, at the judged targets both sides reach, where stepladder and
@@ -883,11 +958,13 @@ pub fn race_section(races: &[SceneRace]) -> String {
     }
     s.push_str(&race_summary(races));
     s.push_str(&cap_section(races));
+    s.push_str(&uniform_section(races));
     let _ = writeln!(
         s,
         "\nThe runs of each contender (tolerance: force evaluations (accepted steps + rejected attempts),\n\
-         error at the end time), and the nanoseconds per evaluation over its runs (the whole step's cost\n\
-         divided by its evaluations; median and range):\n\n\
+         error at the end time; for equal steps, the count: force evaluations, error), and the\n\
+         nanoseconds per evaluation over its runs (the whole step's cost divided by its evaluations;\n\
+         median and range):\n\n\
          | scene | contender | runs | ns per evaluation |\n\
          | --- | --- | --- | --- |"
     );
@@ -928,6 +1005,23 @@ pub fn race_section(races: &[SceneRace]) -> String {
                 ns
             );
         }
+        let runs: Vec<String> = race
+            .uniform
+            .points
+            .iter()
+            .map(|p| {
+                let e = p
+                    .error
+                    .map_or("did not reach the end".to_string(), |e| format!("{e:.2e}"));
+                format!("{} steps: {}, {e}", p.steps, p.evaluations)
+            })
+            .collect();
+        let _ = writeln!(
+            s,
+            "| `{}` | brahe's step, equal steps | {} | - |",
+            race.scene,
+            runs.join("; ")
+        );
     }
     s
 }
