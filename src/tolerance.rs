@@ -410,13 +410,6 @@ pub const ECCENTRIC_PERIODS: f64 = std::f64::consts::SQRT_2;
 /// ladders. The report states where this cap leaves a pericentre unresolved.
 pub const ECCENTRIC_MAX_RUNG_STEPS: u64 = 1 << 17;
 
-/// Rungs a halving of the eccentric ladders for schemes of order up to 2:
-/// two (a ratio `2^(-1/2)`), twice as many rungs per decade as the main
-/// study's halving, so that the window of six rungs fits between the step
-/// that first resolves an `e = 0.9` pericentre and the cap. (Higher orders
-/// keep the main study's density.)
-pub const ECCENTRIC_LOW_ORDER_PER_OCTAVE: u32 = 2;
-
 /// Steps per pericentre time scale `tau_p = r_p / v_p` of the energy runs on
 /// eccentric orbits: the same resolution of the passage for every `e`, so
 /// their energy errors can be compared (a fixed step per period would

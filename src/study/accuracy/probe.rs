@@ -79,7 +79,7 @@ impl ProbedCondition {
 
     /// The condition and its defect in words: "consistency fails: the step
     /// advances positions by 0.2031 h" or "order 5 condition sum b_i c_i^4
-    /// = 1/5 fails by -2.6e-4 (allowance 1.1e-9)".
+    /// = 1/5 fails by -2.63e-4 (allowance 1.0e-9)".
     pub fn describe(&self) -> String {
         if self.condition == CONSISTENCY {
             format!(

@@ -32,8 +32,7 @@ use crate::scheme::{Leapfrog, Scheme, StormerVerlet, VELOCITY_VERLET};
 use crate::state::State;
 use crate::study::accuracy::order::{Analysis, OrderSpec, Rung, RungData, analyse, global_order};
 use crate::tolerance::{
-    self, ECCENTRIC_DRIFT_FRACTION, ECCENTRIC_LOW_ORDER_PER_OCTAVE, ERROR_CEILING, MIN_WINDOW,
-    round_off_energy,
+    self, ECCENTRIC_DRIFT_FRACTION, ERROR_CEILING, MIN_WINDOW, round_off_energy,
 };
 use serde::Serialize;
 
@@ -158,10 +157,10 @@ pub struct EccentricOrderRecord {
 }
 
 /// Runs the order study of `scheme` on the orbit of eccentricity `e`: the
-/// automatic ladder of the main study (from 1/8 period, stopping once the
-/// window has settled or the round-off floor is reached), with the ratio of
-/// [`ECCENTRIC_LOW_ORDER_PER_OCTAVE`] rungs a halving up to second order and rungs capped at
-/// `max_rung_steps`, over [`tolerance::ECCENTRIC_PERIODS`] periods.
+/// automatic ladder of the main study (from 1/8 period and its
+/// [`crate::ladder::per_octave`] rungs a halving, down to the round-off
+/// floor), with rungs capped at `max_rung_steps`, over
+/// [`tolerance::ECCENTRIC_PERIODS`] periods.
 pub fn eccentric_order<M: Scheme>(
     scheme: &M,
     e: f64,
@@ -175,7 +174,7 @@ pub fn eccentric_order<M: Scheme>(
     let spec = OrderSpec {
         t_end: Some(t_end),
         ladder: LadderChoice::AutoWith(AutoLadder {
-            per_octave: (meta.order <= 2).then_some(ECCENTRIC_LOW_ORDER_PER_OCTAVE),
+            per_octave: None,
             max_rung_evaluations: max_rung_steps * u64::from(meta.force_evaluations.max(1)),
         }),
     };
