@@ -57,8 +57,9 @@ fn method() -> String {
          {}` an energy run of {ENERGY_PERIODS} periods is classified by the growth of \
          `|E - E(T)|` over its last two decades, and a round trip (to `t_end`, velocities \
          reversed, back) is compared with the reversibility study's round-off bound. \
-         Neither method is symplectic or symmetric, so the energy is expected to drift and \
-         the round trip to miss by about the global error.\n\n",
+         None of these integrators claims to be symplectic or symmetric, so the energy is \
+         expected to drift and the round trip to miss by about the global error (where the \
+         energy stays bounded instead, that is reported, not failed).\n\n",
         1.0 / ROUND_OFF_SHARE,
         sci(GEOMETRY_TOLERANCE),
     )

@@ -78,9 +78,8 @@ fn eccentric_section(hard: &HardCases) -> String {
     let _ = writeln!(
         out,
         "- **Orders.** The automatic ladder of the order table over {:.4} periods (one full \
-         passage after the start's half passage), with ratio `2^(-1/2)` up to second order \
-         and `2^(-2/p)` above, stopped when the window settles, at the round-off floor, or \
-         when a rung would exceed {} steps. `pass`/`fail` is the order table's verdict; \
+         passage after the start's half passage), with `max(2, ceil(p/2))` rungs a halving as \
+         there, down to the round-off floor or until a rung would exceed {} steps. `pass`/`fail` is the order table's verdict; \
          `unresolved` means every rung's largest error exceeds {} of the orbit (the passage \
          is not resolved at any affordable step), `pre-asymptotic` that too few resolved \
          rungs settle on one order to fit. The order of the error at `t_end` alone is shown \
@@ -302,10 +301,11 @@ fn separatrix_section(hard: &HardCases) -> String {
          = {:.4}` and the slope against `ln(1/h)` within as much of `q/(2 lambda)` with the \
          measured `q`. `longest T` is the longest following time measured; where a ladder \
          reached the round-off floor, it is the limit round-off sets: an energy error of a \
-         few `eps E_b` gives `ln(64/eps)/(2 lambda)`, about 13 for `k = 1`.\n",
+         few `eps E_b` gives about `ln(64/eps)/(2 lambda)` = {:.1}.\n",
         tolerance::SEPARATRIX_OFFSET_CEILING,
         100.0 * tolerance::SEPARATRIX_SLOPE_TOLERANCE,
         1.0 / (2.0 * lambda),
+        (64.0 / f64::EPSILON).ln() / (2.0 * lambda),
     );
     out.push_str(&following_table(&hard.following));
     out.push_str("\nEvery rung is on [a detail page](details/separatrix-rungs.md).\n");

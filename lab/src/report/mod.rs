@@ -278,12 +278,16 @@ fn geometry_method() -> String {
     format!(
         "- **Energy.** {} periods at {} steps a period; the running maximum of `|E - E0|/|E0|` \
          is fitted as `t^g` over the last {} decades: `g < 0.25` bounded, `< 0.75` random \
-         walk (round-off), else drifting; an error past {} of the energy still growing after \
-         the first period means the orbit is lost (drifting). A symplectic scheme must not \
-         drift; any other must.\n\
+         walk (round-off), else drifting, and growth that stays within `10 eps N`, what \
+         round-off alone can do in `N` steps, is a random walk whatever its `g`; an error past \
+         {} of the energy still growing after the first period means the orbit is lost \
+         (drifting). A symplectic or symmetric scheme must not drift, nor wander above \
+         round-off; one that claims neither is expected to drift, and nothing its energy does \
+         refutes it (a slower growth is reported, not failed).\n\
          - **Symplecticity.** The exact Jacobian `J` of one synchronised step, by dual \
          numbers, at steps of 1/10, 1/30 and 1/100 period and four states along the orbit, \
-         in coordinates `(q, v/w)`; symplectic when `max |J^T Omega J - Omega| <= {:e}`.\n\
+         in coordinates `(q, v/w)`; symplectic when `max |J^T Omega J - Omega| / max(1, \
+         max |J_ij|^2) <= {:e}` (round-off grows with the entries of `J`).\n\
          - **Reversibility.** {} steps of 1/100 period forward, then back with `-h`; the \
          return error in units of `eps * scale`, time-symmetric when within `16 N`.\n\n",
         stepladder::internals::geometry::energy::DEFAULT_PERIODS,
@@ -609,14 +613,16 @@ fn method() -> String {
          `t_end` is 2 sqrt(2) periods, an irrational multiple, so no cancellation at a \
          half or whole period can flatter a scheme. A scene without an exact solution \
          compares each rung with the same scheme at half the step.\n\
-         - **Ladder.** Automatic: `ceil(p/2)` interleaved halving ladders from 1/8 of a \
-         period, so the error falls about fourfold a rung, down to the round-off floor or \
+         - **Ladder.** Automatic: `max(2, ceil(p/2))` interleaved halving ladders from 1/8 \
+         of a period, so the error falls about fourfold a rung, down to the round-off floor or \
          until a rung would need more than {} force evaluations.\n\
-         - **Round-off.** Every rung is run again from a start one unit of round-off away; \
-         the distance between the two runs samples its round-off, and a power law in the \
-         step count fitted to the samples bounds it. A rung is clean while that bound is at \
-         most `0.01 ln(h_prev/h) / 2` of its error, so round-off cannot move its local order \
-         by more than 0.01; finer rungs are on the floor.\n\
+         - **Round-off.** Every rung is run again in units of length `1 + 2^-20` smaller, \
+         the same motion in exact arithmetic with every rounding drawn anew; the distance \
+         between the two runs samples its round-off, and a power law in the step count fitted \
+         to the samples bounds it. A rung is clean while that bound is at most \
+         `tau ln(h_prev/h) / 4` of its error, `tau` the plateau tolerance below (5% of the \
+         order), so round-off can neither break a plateau of local orders nor fake a fall out \
+         of one; finer rungs are on the floor.\n\
          - **Window.** Chosen from the data, never from the claimed order: among the clean \
          rungs below {} of the orbit, the finest {} at most whose local orders stay within \
          5% of the median of the finest three. Without a window, a local order that falls \

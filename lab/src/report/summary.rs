@@ -23,7 +23,7 @@ pub fn summary(records: &SuiteRecords) -> String {
     );
     out.push_str(
         "Integrators from published crates (utsuroi, differential-equations, ode_solvers, \
-         peroxide, russell_ode), audited through the same black-box adapters a user \
+         peroxide, russell_ode, brahe), audited through the same black-box adapters a user \
          writes, each refuted claim confirmed independently of the harness: \
          [audit/AUDIT.md](audit/AUDIT.md).\n\n",
     );
