@@ -81,9 +81,9 @@ pub enum Error {
 
     /// A request whose cost is out of proportion; refused before any work.
     #[error(
-        "refusing a run of {} steps (about {} s at the estimated speed); the limit is {limit} steps: use a larger step or a shorter run",
+        "refusing a run of {} steps ({} s at the estimated speed); the limit is {limit} steps: ask for less work (a larger step, fewer steps, rungs, periods or repeats)",
         count(*steps),
-        figure(*seconds)
+        about(*seconds)
     )]
     TooExpensive {
         /// Steps the request would take in total: the true count, which may
@@ -112,6 +112,15 @@ pub enum Error {
 
 /// A step count as a figure (`1.59e13`), or, past the largest double, what
 /// it exceeds.
+/// A rough figure: "about X", or "more than" the largest double.
+fn about(x: f64) -> String {
+    if x.is_finite() {
+        format!("about {}", figure(x))
+    } else {
+        count(x)
+    }
+}
+
 fn count(steps: f64) -> String {
     if steps.is_finite() {
         figure(steps)

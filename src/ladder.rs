@@ -197,7 +197,14 @@ impl Ladder {
                 ),
             });
         }
-        let mut out: Vec<RungSize> = Vec::with_capacity(self.levels);
+        // the whole ladder's nominal steps, `t_end / h0` times the geometric
+        // sum of `ratio^-k`, reckoned before any rung is built, so that a
+        // request of billions of rungs is refused with its size (infinite
+        // past the largest double) instead of being allocated
+        let growth = 1.0 / self.ratio;
+        let nominal = t_end / self.h0 * (growth.powf(self.levels as f64) - 1.0) / (growth - 1.0);
+        check_count(nominal)?;
+        let mut out: Vec<RungSize> = Vec::new();
         let mut total: u64 = 0;
         for k in 0..self.levels {
             let nominal = self.h0 * self.ratio.powi(k as i32);
@@ -285,6 +292,31 @@ mod tests {
             Ladder::new(1e-9, 0.5, 6).unwrap().rungs(10.0),
             Err(Error::TooExpensive { .. })
         ));
+    }
+
+    /// A ladder is reckoned before it is built: billions of rungs are
+    /// refused with the ladder's size, `t_end / h0 (2^levels - 1)` at ratio
+    /// one half (infinite past the largest double), never allocated.
+    #[test]
+    fn a_ladder_of_billions_of_rungs_is_refused_before_it_is_built() {
+        for levels in [usize::MAX, 2_000_000_000, 4_294_967_297] {
+            match Ladder::new(0.1, 0.5, levels).unwrap().rungs(1.0) {
+                Err(Error::TooExpensive { steps, .. }) => assert!(steps.is_infinite(), "{steps}"),
+                other => panic!("{levels}: {other:?}"),
+            }
+        }
+        match Ladder::new(0.1, 0.5, 31).unwrap().rungs(1.0) {
+            Err(Error::TooExpensive { steps, .. }) => {
+                let expected = 10.0 * (2f64.powi(31) - 1.0);
+                assert!((steps / expected - 1.0).abs() < 1e-12, "{steps}");
+            }
+            other => panic!("{other:?}"),
+        }
+        // 10 (2^27 - 1) = 1.3e9 steps: within the limit, and built
+        assert_eq!(
+            Ladder::new(0.1, 0.5, 27).unwrap().rungs(1.0).unwrap().len(),
+            27
+        );
     }
 
     /// A refused count is stated as it was reckoned, with the time it would

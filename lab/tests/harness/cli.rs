@@ -368,3 +368,30 @@ fn speed_and_work_refuse_bad_input() {
     refused(&["speed", "--steps", "-5"], "'-5'");
     refused(&["speed", "--steps", "100000000000"], "refusing a run of");
 }
+
+/// A ladder of billions of rungs is refused on one line, never allocated
+/// (it used to abort the process asking for 32 GB), and the energy tables
+/// of `eccentric` show the eccentricities asked for, not the defaults.
+#[test]
+fn huge_ladders_are_refused_and_asked_eccentricities_are_shown() {
+    for levels in ["2000000000", "18446744073709551615"] {
+        refused(
+            &[
+                "order", "--scheme", "rk4", "--scene", "harmonic", "--levels", levels,
+            ],
+            "refusing a run of more than",
+        );
+    }
+    let out = run(&[
+        "eccentric",
+        "--scheme",
+        "velocity-verlet",
+        "--max-rung-steps",
+        "4096",
+        "--e",
+        "0.7",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("| scheme | e = 0.7 |"), "{text}");
+    assert!(!text.contains("e = 0.99"), "{text}");
+}
