@@ -358,3 +358,54 @@ fn a_solve_stopped_at_a_fixed_tolerance_shows_its_residual_beside_the_error() {
         "{finest:?}"
     );
 }
+
+/// An adaptive integrator that gives up at once and records no state at
+/// all, not even the start: every study must say the runs did not finish,
+/// never panic on what a black box leaves out.
+#[test]
+fn a_run_that_records_nothing_leaves_the_round_trip_unfinished() {
+    use stepladder::scheme::{AdaptiveClaims, AdaptiveIntegrator, AdaptiveRun, RunEnd};
+    use stepladder::state::State;
+    use stepladder::study::{AdaptiveClaim, ToleranceLadderSpec, tolerance_ladder};
+    struct Silent;
+    impl AdaptiveIntegrator for Silent {
+        fn name(&self) -> &'static str {
+            "silent"
+        }
+        fn claims(&self) -> AdaptiveClaims {
+            AdaptiveClaims::pair(5, 4)
+        }
+        fn integrate<S: Scene<D>, const D: usize>(
+            &self,
+            _scene: &S,
+            _start: &State<D>,
+            _t_end: f64,
+            _tol: f64,
+        ) -> Result<AdaptiveRun<D>, stepladder::error::Error> {
+            Ok(AdaptiveRun {
+                trajectory: Vec::new(),
+                evaluations: 1,
+                accepted: 0,
+                rejected: 0,
+                end: RunEnd::GaveUp,
+                time: std::time::Duration::ZERO,
+                reported_evaluations: None,
+            })
+        }
+    }
+    let r = tolerance_ladder(
+        &Silent,
+        &Harmonic::default(),
+        &ToleranceLadderSpec::default(),
+    )
+    .expect("a record");
+    let trip = r.round_trip.expect("the round trip is recorded");
+    assert_eq!(trip.distance, None);
+    assert!(!trip.returns);
+    let judged = r
+        .judged
+        .iter()
+        .find(|j| j.claim == AdaptiveClaim::RoundTrip)
+        .expect("the round trip is judged");
+    assert!(!judged.reason.contains("panicked"), "{}", judged.reason);
+}

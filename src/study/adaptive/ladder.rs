@@ -605,14 +605,25 @@ fn round_trip<I: AdaptiveIntegrator, S: Scene<D>, const D: usize>(
     tol: f64,
 ) -> Result<RoundTrip, Error> {
     let start = scene.initial();
+    // a leg that did not reach its end (or, from a black box, recorded no
+    // state at all) leaves the trip unfinished, never a panic
+    let finish = |run: &AdaptiveRun<D>| {
+        run.trajectory
+            .last()
+            .filter(|_| run.end == RunEnd::Reached)
+            .map(|(_, s)| *s)
+    };
     let there = integrator.integrate(scene, &start, t_end, tol)?;
-    let end = there.trajectory.last().expect("the start is recorded").1;
-    let back = integrator.integrate(scene, &reversed(&end), t_end, tol)?;
-    let home = reversed(&back.trajectory.last().expect("the start is recorded").1);
-    let finished = there.end == RunEnd::Reached && back.end == RunEnd::Reached;
-    let distance = finished.then(|| scene.phase_distance(&home, &start));
+    let (back_accepted, home) = match finish(&there) {
+        Some(end) => {
+            let back = integrator.integrate(scene, &reversed(&end), t_end, tol)?;
+            (back.accepted, finish(&back).map(|s| reversed(&s)))
+        }
+        None => (0, None),
+    };
+    let distance = home.map(|home| scene.phase_distance(&home, &start));
     let round_off =
-        reverse_tolerance_ulps(there.accepted + back.accepted, 1.0) * f64::EPSILON * scene.scale();
+        reverse_tolerance_ulps(there.accepted + back_accepted, 1.0) * f64::EPSILON * scene.scale();
     Ok(RoundTrip {
         tolerance: tol,
         t_end,
