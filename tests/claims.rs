@@ -3,9 +3,9 @@
 //! made passes. Each case is a real measurement of the verdict it tests.
 
 use stepladder::guard::{assert_adaptive_claim, assert_claims, assert_order};
-use stepladder::scene::{Anharmonic, Harmonic, KeplerCircular};
+use stepladder::scene::{Anharmonic, Harmonic, KeplerCircular, KeplerEccentric, Scene};
 use stepladder::scheme::DPRKN8_ADAPTIVE;
-use stepladder::scheme::{DPRKN8, Euler, Leapfrog, VELOCITY_VERLET};
+use stepladder::scheme::{DPRKN8, Euler, Leapfrog, VELOCITY_VERLET, YOSHIDA6};
 use stepladder::study::{
     AdaptiveClaim, ClaimVerdict, EnergySpec, OrderSpec, ReverseSpec, SymplecticSpec,
     ToleranceLadderSpec, Verdict, claims, energy_drift, evaluations, global_order, reversibility,
@@ -168,4 +168,90 @@ fn refuted_and_undecided_fail_a_guard_and_nothing_else_does() {
     .map(Verdict::fails_a_guard)
     .into();
     assert_eq!(fails, [false, true, true, false]);
+}
+
+/// The energy's growth is fitted from the end of the first period on: an
+/// error oscillating with the orbit reaches its largest value within one
+/// period, so before that a bounded error's running maximum still rises.
+/// Velocity Verlet on the oscillator at its default step is bounded; a run
+/// too short to fit a decade of time after the first period is undecided,
+/// never the drift a fit from a fraction of a period would read (a run of
+/// 14 periods fitted from 0.14 of a period gave `g = 1.5`).
+#[test]
+fn a_run_too_short_for_a_growth_law_is_undecided_not_a_drift() {
+    let scene = Harmonic::default();
+    for (periods, expected) in [
+        (0.5, Some(Verdict::Inconclusive)),
+        (5.0, Some(Verdict::Inconclusive)),
+        (14.0, None),
+        (50.0, Some(Verdict::Pass)),
+        (200.0, Some(Verdict::Pass)),
+    ] {
+        let r = energy_drift(
+            &VELOCITY_VERLET,
+            &scene,
+            &EnergySpec {
+                h: None,
+                periods: Some(periods),
+            },
+        )
+        .unwrap();
+        assert_ne!(r.verdict, Verdict::Fail, "{periods}: {}", r.reason);
+        if let Some(v) = expected {
+            assert_eq!(r.verdict, v, "{periods}: {}", r.reason);
+        }
+    }
+}
+
+/// A given step that does not resolve the first period (an `e = 0.99`
+/// pericentre at a hundredth of a period) tests no conservation law, as the
+/// default step's halving rule says: the orbit lost at it leaves velocity
+/// Verlet's claims undecided, not refuted. At a step that resolves it the
+/// claims are judged (at 1e-5 of the period the excursion, 0.106, is still
+/// above a tenth of the energy).
+#[test]
+fn an_orbit_lost_at_a_given_unresolved_step_is_undecided() {
+    let orbit = KeplerEccentric::new(0.99).unwrap();
+    let at = |h: f64, periods: f64| {
+        energy_drift(
+            &VELOCITY_VERLET,
+            &orbit,
+            &EnergySpec {
+                h: Some(h * orbit.period()),
+                periods: Some(periods),
+            },
+        )
+        .unwrap()
+    };
+    let coarse = at(0.01, 100.0);
+    assert!(coarse.lost_at.is_some(), "{}", coarse.reason);
+    assert_eq!(coarse.verdict, Verdict::Inconclusive, "{}", coarse.reason);
+    assert!(
+        coarse.reason.contains("does not resolve"),
+        "{}",
+        coarse.reason
+    );
+    // the pericentre's time scale is about 1e-4 of the period: at 4e-6 of it
+    // the passage takes some thirty steps and the excursion is 0.017
+    let fine = at(4e-6, 20.0);
+    assert_eq!(fine.verdict, Verdict::Pass, "{}", fine.reason);
+}
+
+/// A force growing faster than linearly (the well's cubic past its
+/// barrier) can overflow within one coarse step from a state on the orbit:
+/// no defect of the step, and nothing measured. Sixth-order Yoshida at
+/// `h = 10` on the anharmonic well is undecided there, symplectic at a
+/// resolving step.
+#[test]
+fn an_overflow_at_a_coarse_step_on_a_cubic_force_is_no_breakdown() {
+    let well = Anharmonic::default();
+    let coarse = symplecticity(&YOSHIDA6, &well, &SymplecticSpec { h: Some(10.0) }).unwrap();
+    assert_eq!(coarse.verdict, Verdict::Inconclusive, "{}", coarse.reason);
+    assert!(
+        !coarse.measured && !coarse.reason.contains("breakdown"),
+        "{}",
+        coarse.reason
+    );
+    let fine = symplecticity(&YOSHIDA6, &well, &SymplecticSpec { h: Some(0.5) }).unwrap();
+    assert_eq!(fine.verdict, Verdict::Pass, "{}", fine.reason);
 }
