@@ -95,9 +95,15 @@ pub fn symplecticity<M: Scheme, S: Scene<D>, const D: usize>(
     };
     let mut samples = Vec::new();
     // A panic in the step, or a non-finite map from a finite state on the
-    // orbit, is a defect of the step: one step of a bounded map cannot leave
-    // the numbers (see `breakdown.rs`). The first one found decides.
+    // orbit at a step that resolves the motion, is a defect of the step:
+    // one such step of a bounded map cannot leave the numbers (see
+    // `breakdown.rs`). The first one found decides. At a coarser step a
+    // force growing faster than linearly (the anharmonic well's cubic past
+    // its barrier) can overflow within one step by itself: no defect, and
+    // nothing measured there.
+    let resolved = DEFAULT_STEPS[0] * period * (1.0 + 1e-12);
     let mut defect: Option<String> = None;
+    let mut overflowed: Option<String> = None;
     'steps: for &h in &steps {
         for (time, s) in &states {
             let at = format!("h = {}, from the state at t = {}", figure(h), figure(*time));
@@ -111,6 +117,10 @@ pub fn symplecticity<M: Scheme, S: Scene<D>, const D: usize>(
                 }
             };
             if j.iter().any(|x| !x.is_finite()) {
+                if h > resolved {
+                    overflowed.get_or_insert(at);
+                    continue;
+                }
                 defect = Some(format!(
                     "the tangent map of one step at {at} is not finite: the step returned a \
                      non-finite state from a finite one"
@@ -138,6 +148,24 @@ pub fn symplecticity<M: Scheme, S: Scene<D>, const D: usize>(
         .map(|s| s.symplectic_residual)
         .fold(0.0, f64::max);
     let mut judged = judge(&samples, meta.symplectic);
+    if let (Some(at), None) = (&overflowed, &defect) {
+        let why = format!(
+            "the tangent map of one step at {at} is not finite: at a step above {} of the \
+             period a force growing faster than linearly can leave the numbers within one step, \
+             so nothing is measured there",
+            figure(DEFAULT_STEPS[0]),
+        );
+        if samples.is_empty() {
+            judged.verdict = Verdict::Inconclusive;
+            judged.measured = false;
+            judged.reason = format!(
+                "{why}; take a step of at most {}",
+                figure(DEFAULT_STEPS[0] * period)
+            );
+        } else {
+            judged.reason = format!("{} ({why})", judged.reason);
+        }
+    }
     if let Some(defect) = defect {
         judged.verdict = Verdict::Fail;
         judged.measured = false;
