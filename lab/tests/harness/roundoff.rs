@@ -299,6 +299,20 @@ fn bad_roundoff_and_longrun_requests_are_refused_in_one_line() {
             &["longrun", "--scene", "anharmonic"][..],
             "no quantity the Verlet forms conserve exactly",
         ),
+        // a pericentre of e = 0.99 at a hundredth of the period: the orbit
+        // is lost, and what the angular momentum does then is no round-off
+        (
+            &[
+                "longrun",
+                "--scene",
+                "kepler-eccentric:e=0.99",
+                "--scheme",
+                "velocity-verlet",
+                "--steps",
+                "10000",
+            ][..],
+            "the step does not resolve the motion",
+        ),
         (&["roundoff", "--scene", "mars"][..], "valid scenes"),
         (
             &["roundoff", "--periods", "-1"][..],

@@ -37,9 +37,10 @@ use crate::run::guarded_step;
 use crate::scene::{AnyScene, Harmonic, KeplerCircular, KeplerEccentric, Scene};
 use crate::scheme::Scheme;
 use crate::scheme::compensated::{PairVisitor, pair_ids, visit_pair};
-use crate::study::geometry::energy::EnergyClass;
 use crate::study::geometry::energy::classify_growth;
+use crate::study::geometry::energy::{EnergyClass, RESOLVED_EXCURSION};
 use crate::tolerance::GROWTH_DECADES;
+use crate::wording::figure;
 use serde::Serialize;
 
 /// Default step, in periods of the scene: 100 steps a period.
@@ -201,6 +202,8 @@ pub fn longrun<M: Scheme, S: Conserved<D>, const D: usize>(
             .exact(period * k as f64 / RUNS as f64)
             .ok_or(Error::NoExactSolution(scene.meta().id))?;
         let q0 = scene.value(&start.q, &start.v, h);
+        let (e0, norm) = (scene.energy(&start), crate::scene::energy_norm(scene));
+        let mut excursion = 0.0f64;
         let mut carry = scheme.start(scene, &start, h);
         let mut path = Vec::with_capacity(times.len());
         let mut next = times.iter().copied().peekable();
@@ -211,6 +214,20 @@ pub fn longrun<M: Scheme, S: Conserved<D>, const D: usize>(
                 ))
             })?;
             let s = scheme.state(&carry, h);
+            // the step must resolve the motion for its round-off to mean
+            // anything: the energy study's rule, over the first period
+            if n as f64 * h <= period {
+                excursion = excursion.max((scene.energy(&s) - e0).abs() / norm);
+            } else if excursion > RESOLVED_EXCURSION {
+                return Err(Error::InvalidScene(format!(
+                    "at the long runs' step, {DEFAULT_STEP} of a period, the energy moves by \
+                     {} of itself over the first period from t = {}: the step does not \
+                     resolve the motion, and what a conserved quantity does there is the \
+                     orbit being lost, not round-off",
+                    figure(excursion),
+                    figure(period * k as f64 / RUNS as f64),
+                )));
+            }
             let change = (scene.value(&s.q, &s.v, h) - q0) / q0.abs();
             max_relative_error = max_relative_error.max(change.abs());
             if next.peek() == Some(&n) {
