@@ -205,7 +205,9 @@ pub(super) fn escape(a: &EscapeArgs) -> Result<ExitCode, Error> {
     } else {
         print!("{}", report::escape_table(&hard.escape, &hard.following));
     }
-    Ok(exit_for(
-        hard.escape.iter().all(|r| r.largest_correct.is_some()),
-    ))
+    // a scheme with no correct step fails unless its boundary lies below
+    // what the scan could reach (see `escape_undecided`)
+    Ok(exit_for(hard.escape.iter().all(|r| {
+        r.largest_correct.is_some() || report::escape_undecided(r, &hard.following).is_some()
+    })))
 }

@@ -196,8 +196,16 @@ pub fn eccentric_order_table(records: &[EccentricOrderRecord]) -> String {
 
 /// Schemes down, eccentricities across.
 pub fn eccentric_energy_grid(records: &[EccentricEnergyRecord]) -> String {
+    // the eccentricities run, in the order first met (the defaults, or what
+    // the command asked for)
+    let mut eccentricities: Vec<f64> = Vec::new();
+    for r in records {
+        if !eccentricities.contains(&r.pericentre.e) {
+            eccentricities.push(r.pericentre.e);
+        }
+    }
     let mut header = vec!["scheme".to_string()];
-    header.extend(ECCENTRICITIES.iter().map(|e| format!("e = {e}")));
+    header.extend(eccentricities.iter().map(|e| format!("e = {e}")));
     let header: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut t = Table::new(&header);
     let mut ids: Vec<&str> = Vec::new();
@@ -208,7 +216,7 @@ pub fn eccentric_energy_grid(records: &[EccentricEnergyRecord]) -> String {
     }
     for id in ids {
         let mut row = vec![format!("`{id}`")];
-        for e in ECCENTRICITIES {
+        for &e in &eccentricities {
             let cell = records
                 .iter()
                 .find(|r| r.scheme == id && r.pericentre.e == e)
@@ -512,6 +520,24 @@ pub fn escape_scaling_table(
     t.render()
 }
 
+/// Whether a scheme that classified no scanned step correctly is left
+/// undecided rather than failed: the scan stops at the step its budget
+/// allows ([`stepladder::internals::tolerance::ESCAPE_MAX_STEPS`] a run),
+/// and where the separatrix study's law puts the boundary,
+/// `(delta / |c|)^(1/q)`, below the finest step scanned, no correct step
+/// was to be found above it. Without a law (a scheme whose offset the
+/// separatrix study could not fit) a scheme with no correct step fails, as
+/// it does when the law says the boundary was within reach.
+pub fn escape_undecided(r: &EscapeRecord, following: &[FollowingRecord]) -> Option<f64> {
+    if r.largest_correct.is_some() {
+        return None;
+    }
+    let f = following.iter().find(|f| f.scheme == r.scheme)?;
+    let (c, q) = (f.offset_coefficient?, f.offset_law?.slope);
+    let predicted = (r.spec.delta / c.abs()).powf(1.0 / q);
+    (predicted.is_finite() && predicted < r.finest_scanned).then_some(predicted)
+}
+
 /// The boundary `(delta / |c|)^(1/q)` the separatrix study predicts for the
 /// escape study, when the misclassification is the one the sign of `c` says
 /// and happens at the first approach.
@@ -570,8 +596,24 @@ pub fn escape_table(records: &[EscapeRecord], following: &[FollowingRecord]) -> 
             },
             opt(misfit, |x| format!("{x:+.3}")),
             f.and_then(|f| predicted_boundary(r, f))
+                .or_else(|| escape_undecided(r, following))
                 .map_or("-".into(), |h| format!("{h:.3e}")),
         ]);
     }
-    t.render()
+    let mut out = t.render();
+    for r in records {
+        if let Some(predicted) = escape_undecided(r, following) {
+            let _ = writeln!(
+                out,
+                "\n`{}` at delta {}: no correct step down to {}, the finest the scan's budget of \
+                 {} steps a run allows; the separatrix law puts its boundary near {predicted:.3e}, \
+                 below that, so this is undecided, not a failure.",
+                r.scheme,
+                plain(r.spec.delta),
+                sci(r.finest_scanned),
+                stepladder::internals::tolerance::ESCAPE_MAX_STEPS,
+            );
+        }
+    }
+    out
 }

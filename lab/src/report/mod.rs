@@ -16,8 +16,8 @@ pub use adaptive::{
     adaptive_section, holds_a_neighbour, ladder_table, summary_table as adaptive_summary_table,
 };
 pub use hard_cases::{
-    eccentric_energy_grid, eccentric_order_table, escape_table, following_rungs, following_table,
-    hard_cases_section, predicted_boundary, round_off_table,
+    eccentric_energy_grid, eccentric_order_table, escape_table, escape_undecided, following_rungs,
+    following_table, hard_cases_section, predicted_boundary, round_off_table,
 };
 pub use markdown::Table;
 use markdown::{opt, order, sci, yes_no};

@@ -616,3 +616,37 @@ fn euler_cromer_turns_first_order_below_the_predicted_step() {
         k.lag_coefficient
     );
 }
+
+/// A gap so narrow that the boundary lies below what the scan's budget
+/// reaches is undecided, not a scheme with no correct step: velocity
+/// Verlet at `delta = 1e-12` finds none down to the finest step the budget
+/// allows, and the separatrix law `(delta / |c|)^(1/q)` (`c = k/6`, `q = 2`:
+/// about 2.4e-6) puts its boundary well below that. At the suite's gaps the
+/// boundary is found and nothing is undecided.
+#[test]
+fn a_boundary_below_the_scans_reach_is_undecided() {
+    let well = WellSpec::default();
+    let law = following(&VELOCITY_VERLET, well).unwrap();
+    let narrow = escape_or_trapped(&VELOCITY_VERLET, EscapeSpec::new(1e-12).unwrap()).unwrap();
+    assert_eq!(narrow.largest_correct, None);
+    let predicted = stepladder_lab::report::escape_undecided(&narrow, std::slice::from_ref(&law))
+        .expect("undecided");
+    let theory = (1e-12 / (well.k / 6.0)).sqrt();
+    assert!(
+        relative(predicted, theory) < 0.05,
+        "{predicted:e} against {theory:e}"
+    );
+    assert!(predicted < narrow.finest_scanned / 10.0);
+    for r in &hard().escape {
+        assert!(
+            r.largest_correct.is_some(),
+            "{} at {}",
+            r.scheme,
+            r.spec.delta
+        );
+        assert_eq!(
+            stepladder_lab::report::escape_undecided(r, &hard().following),
+            None
+        );
+    }
+}
