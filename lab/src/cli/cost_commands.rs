@@ -51,7 +51,7 @@ pub(super) struct LongrunArgs {
     /// kepler-eccentric (angular momentum); default harmonic.
     #[arg(long, default_value = "harmonic")]
     scene: String,
-    /// Steps of each run (default 2^22).
+    /// Steps of each run (default 2^18).
     #[arg(long)]
     steps: Option<u64>,
     /// Print the records as JSON.

@@ -72,7 +72,7 @@ enum Command {
     Separatrix(hard_commands::SeparatrixArgs),
     /// Does each scheme tell an orbit just below the well's barrier from one
     /// just above it, and from which step down (exit status 1 when a scheme
-    /// has no correct step)?
+    /// has no correct step down to where the separatrix law puts one)?
     Escape(hard_commands::EscapeArgs),
     /// Find the steps z = h w0 for which a scheme is stable on the oscillator.
     Stability {
@@ -240,6 +240,13 @@ pub fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    // the report and the map print their own progress
+    if !matches!(
+        cli.command,
+        None | Some(Command::Report(_) | Command::Sensitivity(_))
+    ) {
+        heartbeat(std::env::args().skip(1).collect::<Vec<_>>().join(" "));
+    }
     match run(cli) {
         Ok(code) => code,
         Err(e) => {
@@ -247,6 +254,27 @@ pub fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// Seconds of silence after which a command says it is still working, and
+/// then again as often: the step limit bounds a request at about a minute of
+/// a cheap step, but a scheme of many stages or an implicit one steps up to
+/// ten times slower, and a study prints nothing until its table.
+const HEARTBEAT_SECONDS: u64 = 10;
+
+/// Tells the user on stderr, every [`HEARTBEAT_SECONDS`], that `what` is
+/// still running; the thread ends with the process.
+fn heartbeat(what: String) {
+    let start = std::time::Instant::now();
+    std::thread::spawn(move || {
+        loop {
+            std::thread::sleep(std::time::Duration::from_secs(HEARTBEAT_SECONDS));
+            eprintln!(
+                "stepladder {what}: still working ({:.0} s)",
+                start.elapsed().as_secs_f64()
+            );
+        }
+    });
 }
 
 fn run(cli: Cli) -> Result<ExitCode, Error> {
