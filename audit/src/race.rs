@@ -338,7 +338,7 @@ fn uniform_ladder<S: Scene<D>, const D: usize>(
     while steps * per_step <= budget {
         let counted = Counted::new(scene);
         let mut end = None;
-        let outcome = stepladder::run::integrate(
+        let outcome = stepladder::internals::run::integrate(
             &step,
             &counted,
             &scene.initial(),
@@ -614,14 +614,21 @@ mod tests {
         };
         let brahe = end(&|out| {
             let step = crate::methods::brahe_rkn1210_step();
-            stepladder::run::integrate(&step, &scene, &scene.initial(), h, steps, |n, _, s| {
-                if n == steps {
-                    *out = Some(*s);
-                }
-            });
+            stepladder::internals::run::integrate(
+                &step,
+                &scene,
+                &scene.initial(),
+                h,
+                steps,
+                |n, _, s| {
+                    if n == steps {
+                        *out = Some(*s);
+                    }
+                },
+            );
         });
         let own = end(&|out| {
-            stepladder::run::integrate(
+            stepladder::internals::run::integrate(
                 &stepladder::scheme::DPRKN12,
                 &scene,
                 &scene.initial(),
