@@ -173,6 +173,32 @@ pub fn integrate<M: Scheme, S: Scene<D>, const D: usize>(
     integrate_tallied(scheme, scene, start, h, steps, observe).0
 }
 
+/// The state at `t_end` after `steps` equal steps from the scene's start,
+/// and the force evaluations they took, counted on the force (`None` for
+/// the state when the run did not complete).
+pub fn counted_end<M: Scheme, S: Scene<D>, const D: usize>(
+    scheme: &M,
+    scene: &S,
+    t_end: f64,
+    steps: u64,
+) -> (Option<State<D>>, u64) {
+    let counted = crate::scene::Counted::new(scene);
+    let mut last = None;
+    let outcome = integrate(
+        scheme,
+        &counted,
+        &scene.initial(),
+        t_end / steps as f64,
+        steps,
+        |n, _, s| {
+            if n == steps {
+                last = Some(*s);
+            }
+        },
+    );
+    (last.filter(|_| outcome.completed()), counted.evaluations())
+}
+
 /// [`integrate`], returning as well what the scheme's solves reported over
 /// the run ([`Scheme::solve_tally`]; `None` for a scheme that reports none).
 pub fn integrate_tallied<M: Scheme, S: Scene<D>, const D: usize>(

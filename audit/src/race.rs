@@ -33,9 +33,7 @@
 use crate::target_cost::{self, Reach, Run, WINDOW_DECADES};
 use stepladder::internals::cost::work_points::cost_to_reach;
 use stepladder::internals::tolerance::rounding_distance;
-use stepladder::scene::{
-    Counted, KeplerCircular, KeplerEccentric, OuterSolarSystem, Pleiades, Scene,
-};
+use stepladder::scene::{KeplerCircular, KeplerEccentric, OuterSolarSystem, Pleiades, Scene};
 use stepladder::scheme::{
     AdaptiveBlackBox, AdaptiveIntegrator, AdaptiveRun, DPRKN12_ADAPTIVE, DPRKN12_COMPENSATED,
     RunEnd,
@@ -336,24 +334,12 @@ fn uniform_ladder<S: Scene<D>, const D: usize>(
     let mut points = Vec::new();
     let mut steps = 1;
     while steps * per_step <= budget {
-        let counted = Counted::new(scene);
-        let mut end = None;
-        let outcome = stepladder::internals::run::integrate(
-            &step,
-            &counted,
-            &scene.initial(),
-            t_end / steps as f64,
-            steps,
-            |n, _, s| {
-                if n == steps {
-                    end = Some(*s);
-                }
-            },
-        );
-        let error = end.filter(|_| outcome.completed()).and_then(|s| error(&s));
+        let (end, evaluations) =
+            stepladder::internals::run::counted_end(&step, scene, t_end, steps);
+        let error = end.and_then(|s| error(&s));
         points.push(UniformPoint {
             steps,
-            evaluations: counted.evaluations(),
+            evaluations,
             error,
         });
         if error.is_none_or(|e| e <= smallest * 10f64.powf(-WINDOW_DECADES)) {

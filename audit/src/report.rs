@@ -833,6 +833,11 @@ fn cap_section(races: &[SceneRace]) -> String {
     s
 }
 
+/// A run's error at the end time, or that it did not get there.
+fn end_error(error: Option<f64>) -> String {
+    error.map_or("did not reach the end".to_string(), |e| format!("{e:.2e}"))
+}
+
 /// The spread of a decade grid's interpolated evaluations over the grid's
 /// offsets, at every judged target that every offset reaches: the median
 /// and the largest, in percent, and how many.
@@ -974,12 +979,13 @@ pub fn race_section(races: &[SceneRace]) -> String {
                 .points
                 .iter()
                 .map(|p| {
-                    let e = p
-                        .error
-                        .map_or("did not reach the end".to_string(), |e| format!("{e:.2e}"));
                     format!(
-                        "{:.2e}: {} ({} + {}), {e}",
-                        p.tolerance, p.evaluations, p.accepted, p.rejected
+                        "{:.2e}: {} ({} + {}), {}",
+                        p.tolerance,
+                        p.evaluations,
+                        p.accepted,
+                        p.rejected,
+                        end_error(p.error)
                     )
                 })
                 .collect();
@@ -1010,10 +1016,12 @@ pub fn race_section(races: &[SceneRace]) -> String {
             .points
             .iter()
             .map(|p| {
-                let e = p
-                    .error
-                    .map_or("did not reach the end".to_string(), |e| format!("{e:.2e}"));
-                format!("{} steps: {}, {e}", p.steps, p.evaluations)
+                format!(
+                    "{} steps: {}, {}",
+                    p.steps,
+                    p.evaluations,
+                    end_error(p.error)
+                )
             })
             .collect();
         let _ = writeln!(

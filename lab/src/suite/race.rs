@@ -36,10 +36,10 @@ use stepladder::internals::adaptive::tolerance_point;
 use stepladder::internals::cost::step_time::time_run;
 use stepladder::internals::cost::work_points::{Reach, cheapest, cost_to_reach};
 use stepladder::internals::parallel::parallel_map;
-use stepladder::internals::run::integrate;
+use stepladder::internals::run::counted_end;
 use stepladder::internals::tolerance::rounding_distance;
 use stepladder::scene::{
-    AnyScene, Counted, KeplerEccentric, OuterSolarSystem, Pleiades, Scene, SceneVisitor,
+    AnyScene, KeplerEccentric, OuterSolarSystem, Pleiades, Scene, SceneVisitor,
 };
 use stepladder::scheme::{AdaptiveIntegrator, RunEnd};
 use stepladder::scheme::{
@@ -298,31 +298,6 @@ impl NbodyScene {
             }
         }
     }
-}
-
-/// The state at `t_end` after `steps` fixed steps, counting the force
-/// evaluations; `None` when the run blew up.
-fn counted_end<M: Scheme, S: Scene<D>, const D: usize>(
-    scheme: &M,
-    scene: &S,
-    t_end: f64,
-    steps: u64,
-) -> (Option<State<D>>, u64) {
-    let counted = Counted::new(scene);
-    let mut last = None;
-    let outcome = integrate(
-        scheme,
-        &counted,
-        &scene.initial(),
-        t_end / steps as f64,
-        steps,
-        |n, _, s| {
-            if n == steps {
-                last = Some(*s);
-            }
-        },
-    );
-    (last.filter(|_| outcome.completed()), counted.evaluations())
 }
 
 /// One run of a contender.
