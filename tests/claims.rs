@@ -255,3 +255,65 @@ fn an_overflow_at_a_coarse_step_on_a_cubic_force_is_no_breakdown() {
     let fine = symplecticity(&YOSHIDA6, &well, &SymplecticSpec { h: Some(0.5) }).unwrap();
     assert_eq!(fine.verdict, Verdict::Pass, "{}", fine.reason);
 }
+
+/// The long runs measure round-off only where the fixed step resolves the
+/// motion: an `e = 0.99` pericentre at a hundredth of the period loses the
+/// orbit in its first passage (the energy moves by 1e5 of itself), and the
+/// study refuses it, naming the excursion; `e = 0.5` at the same step
+/// (excursion under a tenth) runs.
+#[test]
+fn a_long_run_that_loses_its_orbit_is_refused_not_reported_as_round_off() {
+    use stepladder::study::{LongrunSpec, longrun};
+    let spec = LongrunSpec {
+        steps: Some(10_000),
+    };
+    let lost = longrun(
+        &VELOCITY_VERLET,
+        false,
+        &KeplerEccentric::new(0.99).unwrap(),
+        &spec,
+    );
+    let Err(e) = lost else { panic!("{lost:?}") };
+    let text = e.to_string();
+    assert!(text.contains("does not resolve the motion"), "{text}");
+    let kept = longrun(
+        &VELOCITY_VERLET,
+        false,
+        &KeplerEccentric::new(0.5).unwrap(),
+        &spec,
+    )
+    .expect("a resolved orbit runs");
+    // round-off alone: a few eps a step at most over 10^4 steps
+    assert!(
+        kept.max_relative_error < 1e-12,
+        "{}",
+        kept.max_relative_error
+    );
+}
+
+/// A counted run of equal steps ends where the scheme's own steps end and
+/// counts what the force was asked: velocity Verlet over one period of the
+/// oscillator at 64 steps is within its `(h w)^2 / 24`-sized phase error of
+/// the start, one evaluation a step plus the first; a run that blows up
+/// has no end state.
+#[test]
+fn a_counted_run_of_equal_steps_gives_its_end_and_its_evaluations() {
+    use stepladder::internals::run::counted_end;
+    let scene = Harmonic::default();
+    let period = scene.period();
+    let (end, evaluations) = counted_end(&VELOCITY_VERLET, &scene, period, 64);
+    let end = end.expect("the run ends");
+    let exact = scene.exact(period).unwrap();
+    let h_w = std::f64::consts::TAU / 64.0;
+    // the phase lags by about N (h w)^3 / 24 over the period
+    let lag = 64.0 * h_w.powi(3) / 24.0;
+    let distance = scene.phase_distance(&end, &exact);
+    assert!(
+        distance < 1.5 * lag && distance > 0.5 * lag,
+        "{distance:e} against {lag:e}"
+    );
+    assert_eq!(evaluations, 65);
+    // Euler at h w = 1e3 leaves the doubles within the run
+    let (blown, _) = counted_end(&Euler, &scene, 1e3 * 1e4, 10_000);
+    assert!(blown.is_none());
+}
