@@ -317,3 +317,23 @@ fn a_counted_run_of_equal_steps_gives_its_end_and_its_evaluations() {
     let (blown, _) = counted_end(&Euler, &scene, 1e3 * 1e4, 10_000);
     assert!(blown.is_none());
 }
+
+/// The size a ladder is refused with is its own: `t_end / h0` times the
+/// geometric sum `(r^-L - 1) / (r^-1 - 1)`, here at a ratio of a quarter
+/// (at one half the divisor is 1 and hides its own mistakes).
+#[test]
+fn a_refused_ladder_states_its_geometric_size() {
+    use stepladder::error::Error;
+    use stepladder::ladder::Ladder;
+    let levels = 17;
+    match Ladder::new(0.1, 0.25, levels).unwrap().rungs(1.0) {
+        Err(Error::TooExpensive { steps, .. }) => {
+            let expected = 10.0 * (4f64.powi(levels as i32) - 1.0) / 3.0;
+            assert!(
+                (steps / expected - 1.0).abs() < 1e-12,
+                "{steps:e} against {expected:e}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
