@@ -409,3 +409,38 @@ fn a_run_that_records_nothing_leaves_the_round_trip_unfinished() {
         .expect("the round trip is judged");
     assert!(!judged.reason.contains("panicked"), "{}", judged.reason);
 }
+
+/// The round trip's round-off bound is the reversibility study's, `16 eps N
+/// scale`, with `N` the accepted steps of both legs, recomputed here from
+/// the two legs run apart: on an oscillator of amplitude 3 (scale 3), so
+/// that the scale's place in it shows.
+#[test]
+fn the_round_trip_bound_counts_both_legs_and_the_scale() {
+    use stepladder::scheme::{AdaptiveIntegrator, DPRKN8_ADAPTIVE};
+    use stepladder::state::State;
+    use stepladder::study::{ToleranceLadderSpec, tolerance_ladder};
+    let scene = Harmonic::new(1.0, 3.0, 0.0).unwrap();
+    let spec = ToleranceLadderSpec::default();
+    let r = tolerance_ladder(&DPRKN8_ADAPTIVE, &scene, &spec).unwrap();
+    let trip = r.round_trip.expect("the round trip is recorded");
+    let there = DPRKN8_ADAPTIVE
+        .run(&scene, trip.t_end, trip.tolerance)
+        .unwrap();
+    let end = there.trajectory.last().unwrap().1;
+    let back = DPRKN8_ADAPTIVE
+        .integrate(
+            &scene,
+            &State::new(end.q, -end.v),
+            trip.t_end,
+            trip.tolerance,
+        )
+        .unwrap();
+    assert!(there.accepted > 10 && back.accepted > 10);
+    let expected = 16.0 * (there.accepted + back.accepted) as f64 * f64::EPSILON * 3.0;
+    assert!((scene.scale() - 3.0).abs() < 1e-15);
+    assert!(
+        (trip.round_off / expected - 1.0).abs() < 1e-12,
+        "{:e} against {expected:e}",
+        trip.round_off
+    );
+}
