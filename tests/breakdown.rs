@@ -455,3 +455,36 @@ fn a_breakdown_judges_the_coarser_run_by_its_relative_energy_error() {
     assert_eq!(scene.energy(&scene.initial()), 5e5);
     cites_the_first_resolving_coarser_step(&scene);
 }
+
+/// Where the symplecticity study calls a non-finite tangent map a defect:
+/// at steps up to a tenth of a period, the coarsest of its default steps,
+/// that one included, and not above it, where a force growing faster than
+/// linearly can overflow in one step by itself. A step that answers NaN
+/// every time fails at exactly a tenth and is left undecided at 0.15.
+#[test]
+fn a_non_finite_tangent_map_is_a_defect_up_to_a_tenth_of_a_period() {
+    let scene = Harmonic::default();
+    let nan = BlackBox::new(
+        VERLET,
+        |q: &mut [f64], v: &mut [f64], h, force: &Force<f64>| {
+            velocity_verlet(q, v, h, force);
+            v[0] = f64::NAN;
+        },
+    );
+    let at = |fraction: f64| {
+        symplecticity(
+            &nan,
+            &scene,
+            &SymplecticSpec {
+                h: Some(fraction * scene.period()),
+            },
+        )
+        .unwrap()
+    };
+    let tenth = at(0.1);
+    assert_eq!(tenth.verdict, Verdict::Fail, "{}", tenth.reason);
+    assert!(tenth.reason.contains("breakdown"), "{}", tenth.reason);
+    let coarser = at(0.15);
+    assert_eq!(coarser.verdict, Verdict::Inconclusive, "{}", coarser.reason);
+    assert!(!coarser.measured, "{}", coarser.reason);
+}

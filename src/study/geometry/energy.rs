@@ -48,7 +48,7 @@ pub const RESOLVED_EXCURSION: f64 = 0.1;
 /// Most halvings of the default step made to resolve the motion (a step of
 /// 1/25600 period): the run keeps its 10^6 steps, so its length in periods
 /// shrinks by the same factor (to 39 periods, whose growth is fitted from
-/// the first period on, over 1.6 decades).
+/// the second period on, over 1.3 decades).
 pub const MAX_HALVINGS: u32 = 8;
 
 /// How the step of a run was chosen, which its reason states.
@@ -612,22 +612,25 @@ impl EnergyTrace {
     }
 
     /// The growth law over the last [`GROWTH_DECADES`] decades of the run,
-    /// from no earlier than the end of the first period: an error that
-    /// oscillates with the orbit reaches its largest value within one
-    /// period, so before that a bounded error's running maximum is still
-    /// rising, which a fit would read as growth (velocity Verlet's over a
-    /// run of 14 periods, fitted from 0.14 of a period, came out `g = 1.5`).
-    /// A window left shorter than a decade (a run of under ten periods)
+    /// from no earlier than where the quantity fitted has reached its
+    /// plateau if it is bounded: an error that oscillates with the orbit
+    /// reaches its largest value within one period, so the running maximum
+    /// of `|E - E0|` has by the end of the first period, and the drift from
+    /// the state after it by the end of the second. Before that a bounded
+    /// error is still rising, which a fit reads as growth: velocity Verlet's
+    /// over 14 periods, fitted from 0.14 of a period, came out `g = 1.5`,
+    /// and its drift over 10 periods, fitted from the first, `g = 0.33`,
+    /// both failing a correct scheme. A window left shorter than a decade
     /// cannot tell `t^(1/2)` from `t`: no exponent.
     fn growth_law(&self, h: f64, period: f64) -> GrowthLaw {
         let t_stop = self.taken as f64 * h;
-        let t_from = (t_stop / 10f64.powf(GROWTH_DECADES)).max(period);
-        let too_short = t_stop < 10.0 * t_from;
-        let growth_samples: Vec<(f64, f64)> = if self.drift_samples.len() >= 3 {
-            self.drift_samples.clone()
+        let (growth_samples, plateau): (Vec<(f64, f64)>, f64) = if self.drift_samples.len() >= 3 {
+            (self.drift_samples.clone(), 2.0 * period)
         } else {
-            self.samples.iter().map(|&[t, m]| (t, m)).collect()
+            (self.samples.iter().map(|&[t, m]| (t, m)).collect(), period)
         };
+        let t_from = (t_stop / 10f64.powf(GROWTH_DECADES)).max(plateau);
+        let too_short = t_stop < 10.0 * t_from;
         let window: Vec<(f64, f64)> = growth_samples
             .iter()
             .copied()
