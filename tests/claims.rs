@@ -324,7 +324,7 @@ fn a_counted_run_of_equal_steps_gives_its_end_and_its_evaluations() {
 #[test]
 fn a_refused_ladder_states_its_geometric_size() {
     use stepladder::error::Error;
-    use stepladder::ladder::Ladder;
+    use stepladder::internals::ladder::Ladder;
     let levels = 17;
     match Ladder::new(0.1, 0.25, levels).unwrap().rungs(1.0) {
         Err(Error::TooExpensive { steps, .. }) => {
