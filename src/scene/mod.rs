@@ -371,14 +371,39 @@ pub struct Parameters(Vec<(String, f64)>);
 
 impl Parameters {
     /// Reads `name=value` pairs separated by commas (an empty text is none).
+    /// A name given twice is refused, not settled by the last one, and so is
+    /// an empty item between commas: either is more likely a typing slip
+    /// than a choice, and a run with a parameter the user did not mean is a
+    /// silently wrong number.
+    ///
+    /// ```
+    /// use stepladder::scene::Parameters;
+    /// assert_eq!(Parameters::parse("w0=50, x0=2").unwrap().get("x0", 1.0), 2.0);
+    /// assert!(Parameters::parse("").is_ok());
+    /// assert!(Parameters::parse("w0=50,w0=5").is_err());
+    /// assert!(Parameters::parse("w0=50,,x0=2").is_err());
+    /// ```
     pub fn parse(text: &str) -> Result<Self, Error> {
-        let mut out = Vec::new();
-        for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let mut out: Vec<(String, f64)> = Vec::new();
+        if text.trim().is_empty() {
+            return Ok(Self(out));
+        }
+        for item in text.split(',').map(str::trim) {
             let parsed = item
                 .split_once('=')
                 .and_then(|(n, v)| Some((n.trim(), v.trim().parse::<f64>().ok()?)));
             match parsed {
+                Some((name, _)) if out.iter().any(|(n, _)| n == name) => {
+                    return Err(Error::InvalidScene(format!(
+                        "'{name}' is given twice in '{text}'"
+                    )));
+                }
                 Some((name, value)) if !name.is_empty() => out.push((name.to_string(), value)),
+                _ if item.is_empty() => {
+                    return Err(Error::InvalidScene(format!(
+                        "'{text}' has an empty item: expected name=number between commas"
+                    )));
+                }
                 _ => {
                     return Err(Error::InvalidScene(format!(
                         "cannot read '{item}': expected name=number"
@@ -436,5 +461,33 @@ pub fn energy_norm<S: Scene<D>, const D: usize>(scene: &S) -> f64 {
         e0.abs()
     } else {
         0.5 * (scene.frequency() * scene.scale()).powi(2)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Names and values are trimmed, an empty text has none, and a
+    /// parameter given twice or an empty item between commas is refused
+    /// with what was typed; a name with no number is refused as before.
+    #[test]
+    fn parameters_refuse_a_name_twice_and_an_empty_item() {
+        let p = Parameters::parse(" w0 = 50 , x0=2").unwrap();
+        assert_eq!(
+            (p.get("w0", 1.0), p.get("x0", 1.0), p.get("v0", 7.0)),
+            (50.0, 2.0, 7.0)
+        );
+        assert_eq!(Parameters::parse("  ").unwrap(), Parameters::default());
+        let refused = |text: &str| match Parameters::parse(text) {
+            Err(Error::InvalidScene(m)) => m,
+            other => panic!("{text}: {other:?}"),
+        };
+        assert!(refused("w0=1,x0=2,w0=3").contains("'w0' is given twice in 'w0=1,x0=2,w0=3'"));
+        for text in ["w0=1,,x0=2", "w0=1,", ",w0=1"] {
+            assert!(refused(text).contains("has an empty item"), "{text}");
+        }
+        assert!(refused("w0").contains("cannot read 'w0'"));
+        assert!(refused("=3").contains("cannot read '=3'"));
     }
 }

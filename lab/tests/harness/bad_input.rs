@@ -360,6 +360,30 @@ fn unknown_ids_list_the_valid_ones() {
         &["order", "--scheme", "euler", "--scene", "harmonic:w0"],
         "expected name=number",
     );
+    refused(
+        &[
+            "order",
+            "--scheme",
+            "euler",
+            "--scene",
+            "harmonic:w0=2,w0=3",
+        ],
+        "'w0' is given twice",
+    );
+    refused(
+        &[
+            "order",
+            "--scheme",
+            "euler",
+            "--scene",
+            "harmonic:w0=2,,x0=3",
+        ],
+        "has an empty item",
+    );
+    refused(
+        &["order", "--scheme", "euler", "--scene", "harmonic:w0=2,"],
+        "has an empty item",
+    );
     refused(&["stability", "--scheme", "rk9"], "valid schemes");
     refused(&["order", "--scene", "harmonic"], "--scheme");
     refused(&["frobnicate"], "unrecognized subcommand");
