@@ -41,6 +41,18 @@ pub const MIN_WINDOW: usize = 6;
 /// are not yet asymptotic.
 pub const ERROR_CEILING: f64 = 0.3;
 
+/// The most radians of the motion's fastest local rate one step may cover
+/// for the step to resolve it. A step `h` of a scheme of order `p` errs
+/// locally by about `C (h w)^(p+1)` of the state, where `w` is the rate at
+/// which the force turns or pulls nearby orbits apart (the square root of
+/// the largest eigenvalue of `|d a / d q|`); the expansion needs `h w` below
+/// one, and so do the linear stability limits of the explicit one-step
+/// schemes of the catalogue (2 for the Verlet forms, `2 sqrt 2` for RK4 on
+/// the oscillator). Where even the finest rung takes more than one radian
+/// of the fastest motion a step (a near-parabolic orbit's pericentre), a
+/// correct scheme can blow up on every rung, and that says nothing of it.
+pub const RESOLVED_STEP_RADIANS: f64 = 1.0;
+
 /// Largest part of a rung's error that round-off may be for the rung to be
 /// clean, for a rung `ln(h_prev / h) = log_ratio` finer than its neighbour
 /// and a local order `local` there.

@@ -10,7 +10,7 @@
 use stepladder::prelude::*;
 use stepladder::scene::{Anharmonic, Pleiades};
 use stepladder::scheme::Advance;
-use stepladder::scheme::{Euler, Leapfrog};
+use stepladder::scheme::{Euler, Leapfrog, VELOCITY_VERLET};
 use stepladder::study::{
     AdaptiveClaim, DropReason, EnergySpec, OrderSpec, ReverseSpec, SymplecticSpec, energy_drift,
     evaluations, global_order, reversibility, symplecticity,
@@ -255,6 +255,53 @@ fn correct_steps_are_not_called_broken() {
         assert!(r.breakdown.is_none(), "{}: {}", r.scheme, r.reason);
         assert_ne!(r.verdict, Verdict::Fail, "{}: {}", r.scheme, r.reason);
     }
+}
+
+/// A near-parabolic orbit, `e = 1 - 1e-7`: its pericentre, `1e-7` AU from
+/// the Sun, passes in some `1e-11` of a year, and the force there turns at
+/// `sqrt(2 GM / r_p^3) = 2.8e11` radians a year, so the finest step a
+/// ladder reaches within its cap (about `2e-6`) takes some `5e5` radians of
+/// it: correct schemes blow up on every rung, and the order study must say
+/// that no rung resolves the motion, not blame them. The sign-flipped
+/// Verlet blows up on every rung of an oscillator whose every rung
+/// resolves it, and still fails.
+#[test]
+fn a_blow_up_on_every_rung_the_motion_is_not_resolved_on_blames_no_scheme() {
+    let grazing = KeplerEccentric::new(1.0 - 1e-7).unwrap();
+    let verlet = BlackBox::new(VERLET, velocity_verlet::<f64>);
+    for r in [
+        global_order(&verlet, &grazing, &OrderSpec::default()).unwrap(),
+        global_order(&VELOCITY_VERLET, &grazing, &OrderSpec::default()).unwrap(),
+    ] {
+        println!("{}: {}", r.scheme, r.reason);
+        assert_eq!(
+            r.verdict,
+            Verdict::Inconclusive,
+            "{}: {}",
+            r.scheme,
+            r.reason
+        );
+        assert!(
+            r.reason
+                .contains("none resolves the motion's fastest time scale"),
+            "{}: {}",
+            r.scheme,
+            r.reason
+        );
+    }
+    let flipped = BlackBox::new(
+        VERLET,
+        |q: &mut [f64], v: &mut [f64], h, force: &Force<f64>| {
+            let repelled = |q: &[f64], a: &mut [f64]| {
+                force(q, a);
+                a.iter_mut().for_each(|x| *x = -*x);
+            };
+            velocity_verlet(q, v, h, &repelled);
+        },
+    );
+    let r = global_order(&flipped, &Harmonic::default(), &OrderSpec::default()).unwrap();
+    assert_eq!(r.verdict, Verdict::Fail, "{}", r.reason);
+    assert!(r.reason.contains("every rung blew up"), "{}", r.reason);
 }
 
 /// Adaptive RK4 by step doubling (see the adaptive black box's docs), with

@@ -206,6 +206,18 @@ pub fn potential_gradient<S: Scene<D>, const D: usize>(
     })
 }
 
+/// The motion's fastest local rate at `q`: `sqrt(max |lambda|)` over the
+/// eigenvalues `lambda` of the force's Jacobian `d a / d q` (symmetric where
+/// `a = -grad V`; its symmetric part is taken). Near a minimum of the
+/// potential it is the fastest local angular frequency; where the force
+/// pulls nearby orbits apart (`lambda > 0`, radially near a Kepler
+/// pericentre, `lambda = 2 GM / r^3`) the rate at which they e-fold.
+pub fn local_rate<S: Scene<D>, const D: usize>(scene: &S, q: &SVector<f64, D>) -> f64 {
+    let jacobian = acceleration_jacobian(scene, q);
+    let symmetric = (&jacobian + jacobian.transpose()) * 0.5;
+    symmetric.symmetric_eigenvalues().amax().sqrt()
+}
+
 /// `d a_i / d q_j`, exactly.
 pub fn acceleration_jacobian<S: Scene<D>, const D: usize>(
     scene: &S,
@@ -263,6 +275,27 @@ mod tests {
             let (fd, bound) =
                 finite_difference_jacobian(&VELOCITY_VERLET, &ecc, &ecc.initial(), h).unwrap();
             assert!((&fd - &exact).amax() <= bound);
+        }
+    }
+
+    /// The oscillator's rate is its `w0` everywhere; the Kepler force's
+    /// Jacobian at radius `r` has the eigenvalues `-GM / r^3` (along the
+    /// orbit) and `2 GM / r^3` (radially), so its rate is `sqrt(2 GM /
+    /// r^3)`, at the pericentre `r_p = 1 - e` of an orbit of `a = 1`.
+    #[test]
+    fn the_local_rate_is_the_forces_closed_form() {
+        let w = local_rate(&Harmonic::new(3.0, 1.0, 0.0).unwrap(), &Vector1::new(0.4));
+        assert!((w - 3.0).abs() < 1e-14);
+        let gm = 4.0 * std::f64::consts::PI.powi(2);
+        for e in [0.0, 0.6, 0.9, 0.999999] {
+            let orbit = crate::scene::KeplerEccentric::new(e).unwrap();
+            let rp: f64 = 1.0 - e;
+            let w = local_rate(&orbit, &orbit.initial().q);
+            let expected = (2.0 * gm / rp.powi(3)).sqrt();
+            assert!(
+                (w / expected - 1.0).abs() < 1e-9,
+                "e {e}: {w} vs {expected}"
+            );
         }
     }
 

@@ -48,6 +48,7 @@
 use crate::error::Error;
 use crate::ladder::{AUTO_START, AutoLadder, LadderChoice, LadderEnd, per_octave, steps_for};
 use crate::maths::fit::OrderFit;
+use crate::maths::tangent::local_rate;
 use crate::run::{Outcome, comparison_steps, integrate, integrate_tallied};
 use crate::scene::{Invariant, InvariantValue, Scaled, Scene};
 use crate::scheme::{Scheme, SolveTally};
@@ -344,6 +345,23 @@ struct Run<const D: usize> {
     solve: Option<SolveTally>,
     /// How its twin ended, when the twin stopped.
     twin_outcome: Option<Outcome>,
+}
+
+/// Times at which [`fastest_rate_along`] samples the exact orbit, the
+/// start and the end included: the start, where a Kepler orbit of the
+/// catalogue is at its pericentre, and a grid fine enough for any motion
+/// whose fast passages last more than a 4096th of the run (a passage
+/// between two samples goes unseen, and the verdict stays the stricter).
+pub const RATE_SAMPLES: usize = 4096;
+
+/// The motion's fastest local rate ([`local_rate`]) along the exact orbit
+/// over `[0, t_end]`, at [`RATE_SAMPLES`] intervals; zero without an exact
+/// solution.
+fn fastest_rate_along<S: Scene<D>, const D: usize>(scene: &S, t_end: f64) -> f64 {
+    (0..=RATE_SAMPLES)
+        .filter_map(|k| scene.exact(t_end * k as f64 / RATE_SAMPLES as f64))
+        .map(|s| local_rate(scene, &s.q))
+        .fold(0.0, f64::max)
 }
 
 /// The runs of one order study, keyed by step count.
@@ -875,6 +893,7 @@ impl<'a, M: Scheme, S: Scene<D>, const D: usize> Lab<'a, M, S, D> {
             self.reference,
             end,
             self.scale,
+            &|| fastest_rate_along(self.scene, self.t_end),
         );
         let breakdown = self.breakdown();
         if let Some(b) = &breakdown {

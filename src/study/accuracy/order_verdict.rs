@@ -12,7 +12,7 @@ use crate::study::accuracy::rung::{OrderReduction, Reference, Rung};
 use crate::study::verdict::Verdict;
 use crate::tolerance::{
     self, ERROR_CEILING, MIN_WINDOW, MIN_WINDOW_HALVINGS, ORDER_TOLERANCE, REFERENCE_RUNGS,
-    STALL_ORDER, WINDOW_RUNGS,
+    RESOLVED_STEP_RADIANS, STALL_ORDER, WINDOW_RUNGS,
 };
 use crate::wording::{figure, order, vs_lower, vs_upper};
 
@@ -44,7 +44,10 @@ impl Judgement {
     }
 }
 
-/// Judges the claimed order against the analysed rungs.
+/// Judges the claimed order against the analysed rungs. `fastest` gives
+/// the motion's fastest local rate along the exact orbit (see
+/// [`crate::maths::tangent::local_rate`]), asked for only when every rung
+/// blew up.
 pub(crate) fn judge(
     claim: f64,
     rungs: &[Rung],
@@ -52,6 +55,7 @@ pub(crate) fn judge(
     reference: Reference,
     end: LadderEnd,
     scale: f64,
+    fastest: &dyn Fn() -> f64,
 ) -> Judgement {
     if let Some(stalled) = analysis.choice.clean.and_then(|(a, b)| stall(rungs, a, b)) {
         return Judgement::fail(stalled, None);
@@ -91,7 +95,7 @@ pub(crate) fn judge(
         .map(|(r, _)| r)
         .collect();
     if clean == 0 && floor.is_empty() {
-        return judge_unresolved(rungs, analysis, reference, end, scale);
+        return judge_unresolved(rungs, analysis, reference, end, scale, fastest);
     }
     if clean == 0 {
         let smallest = rungs
@@ -332,13 +336,18 @@ fn judge_fit(
 
 /// The verdict when no rung resolved the motion and none sat at round-off:
 /// every rung blew up or stayed far from its reference down to the finest
-/// step.
+/// step. A blow-up at every rung of a bounded exact motion is a defect
+/// where the finest rung resolves the motion's fastest local rate (at most
+/// [`RESOLVED_STEP_RADIANS`] of it a step); where it does not, a correct
+/// scheme can blow up there too, and the ladder has not reached the steps
+/// that would tell.
 fn judge_unresolved(
     rungs: &[Rung],
     analysis: &Analysis,
     reference: Reference,
     end: LadderEnd,
     scale: f64,
+    fastest: &dyn Fn() -> f64,
 ) -> Judgement {
     let count = |reason| {
         analysis
@@ -350,7 +359,32 @@ fn judge_unresolved(
     };
     let (unstable, above) = (count(DropReason::Unstable), count(DropReason::AboveCeiling));
     let finest_h = rungs.last().map_or(f64::NAN, |r| r.h);
+    let advice = match end {
+        LadderEnd::Fixed => "a correct scheme needs finer steps here: give the ladder \
+                             more levels or a smaller h0, or use the automatic one"
+            .to_string(),
+        _ => "a correct scheme needs finer steps here: raise the step cap \
+              (AutoLadder::max_rung_evaluations) or shorten t_end; if the motion itself runs \
+              away, shorten t_end"
+            .to_string(),
+    };
     if reference == Reference::Exact && unstable == rungs.len() {
+        let rate = fastest();
+        if finest_h * rate > RESOLVED_STEP_RADIANS {
+            return Judgement::inconclusive(
+                format!(
+                    "every rung blew up, down to h = {}, but none resolves the motion's fastest \
+                     time scale: its fastest local rate along the exact orbit is {} per unit \
+                     time, {} radians a step at the finest rung (a step resolves it at {} \
+                     radian or less)",
+                    figure(finest_h),
+                    figure(rate),
+                    figure(finest_h * rate),
+                    figure(RESOLVED_STEP_RADIANS),
+                ),
+                advice,
+            );
+        }
         return Judgement::fail(
             format!(
                 "no convergence: every rung blew up, down to h = {}, though the exact \
@@ -369,15 +403,7 @@ fn judge_unresolved(
              {ERROR_CEILING} of the orbit, down to h = {})",
             figure(finest_h)
         ),
-        match end {
-            LadderEnd::Fixed => "a correct scheme needs finer steps here: give the ladder \
-                                 more levels or a smaller h0, or use the automatic one"
-                .into(),
-            _ => "a correct scheme needs finer steps here: raise the step cap \
-                  (AutoLadder::max_rung_evaluations) or shorten t_end; if the motion itself runs \
-                  away, shorten t_end"
-                .into(),
-        },
+        advice,
     )
 }
 
@@ -662,6 +688,7 @@ mod tests {
             Reference::Exact,
             LadderEnd::Floor,
             1.0,
+            &|| 0.0,
         );
         (rungs, judgement)
     }
@@ -859,6 +886,60 @@ mod tests {
         assert!(found.contains("not to the exact solution"), "{found}");
     }
 
+    /// Every rung blew up on a bounded exact motion: a defect where the
+    /// finest rung takes at most one radian of the motion's fastest rate a
+    /// step, undecided where it takes more (the finest step here is `0.1
+    /// 2^-14.5 = 4.3e-6`, so a rate of `2.3e5` is one radian a step).
+    #[test]
+    fn a_blow_up_on_every_rung_is_a_defect_only_where_the_finest_resolves_the_motion() {
+        let mut rungs = ladder(|_| f64::NAN);
+        for r in &mut rungs {
+            r.error = None;
+            r.outcome = Outcome::Unstable {
+                h: r.h,
+                step: 1,
+                time: r.h,
+                coordinate: "q[0]".into(),
+                value: f64::NAN,
+            };
+        }
+        let analysis = crate::maths::window::analyse(&data(&rungs), 1.0);
+        let finest = rungs.last().unwrap().h;
+        let at = |rate: f64| {
+            judge(
+                2.0,
+                &rungs,
+                &analysis,
+                Reference::Exact,
+                LadderEnd::Cap,
+                1.0,
+                &|| rate,
+            )
+        };
+        let resolved = at(RESOLVED_STEP_RADIANS / finest);
+        assert_eq!(resolved.verdict, Verdict::Fail, "{}", resolved.reason);
+        assert!(
+            resolved.reason.contains("every rung blew up"),
+            "{}",
+            resolved.reason
+        );
+        let unresolved = at(RESOLVED_STEP_RADIANS / finest * 1.001);
+        assert_eq!(
+            unresolved.verdict,
+            Verdict::Inconclusive,
+            "{}",
+            unresolved.reason
+        );
+        assert!(
+            unresolved
+                .reason
+                .contains("none resolves the motion's fastest time scale"),
+            "{}",
+            unresolved.reason
+        );
+        assert!(unresolved.advice.unwrap().contains("raise the step cap"));
+    }
+
     /// No rung resolved the motion (every error ten times the orbit): the
     /// advice depends on what ended the ladder, levels for a fixed one, the
     /// step cap for an automatic one.
@@ -867,7 +948,9 @@ mod tests {
         let rungs = ladder(|_| 10.0);
         let analysis = crate::maths::window::analyse(&data(&rungs), 1.0);
         let advice = |end| {
-            let j = judge(2.0, &rungs, &analysis, Reference::Exact, end, 1.0);
+            // the fastest rate is asked for only when every rung blew up
+            let never = || -> f64 { unreachable!("no rung blew up") };
+            let j = judge(2.0, &rungs, &analysis, Reference::Exact, end, 1.0, &never);
             assert_eq!(j.verdict, Verdict::Inconclusive, "{}", j.reason);
             assert!(
                 j.reason.contains("no rung resolved the motion"),
