@@ -249,6 +249,92 @@ pub struct SceneRace {
     pub uncapped: Contender,
     /// brahe's step at equal steps, beside the race too.
     pub uniform: UniformLadder,
+    /// stepladder's estimate along the run at one fixed step.
+    pub estimate: EstimateAlong,
+}
+
+/// The tolerance at which [`EstimateAlong`] takes its step and reads its
+/// estimate: the middle target of the race.
+pub const ESTIMATE_TOLERANCE: f64 = 1e-9;
+
+/// Start points a step, for [`EstimateAlong`]: a quarter step apart, so that
+/// the start points one step on are among them.
+pub const STARTS_PER_STEP: usize = 4;
+
+/// stepladder's plain pair's own estimate for one step of a fixed size,
+/// from start points along the run: what a step controller follows. A
+/// controller sets each step from the estimates it has already seen; it
+/// aims at `safety^(q+1)` of the tolerance, so a step of the size it holds
+/// is rejected where the estimate one step on is more than its margin,
+/// `safety^-(q+1)`, above the last.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EstimateAlong {
+    /// The step: the run's length over the steps the pair accepts at
+    /// [`ESTIMATE_TOLERANCE`].
+    pub step: f64,
+    /// The estimate in units of [`ESTIMATE_TOLERANCE`] from each start point,
+    /// [`STARTS_PER_STEP`] a step from the run's start, every one from which
+    /// a whole step stays within the run.
+    pub estimates: Vec<f64>,
+    /// The controller's margin, `safety^-(q+1)`.
+    pub margin: f64,
+}
+
+impl EstimateAlong {
+    /// The smallest and the largest estimate.
+    pub fn range(&self) -> (f64, f64) {
+        self.estimates
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &e| {
+                (lo.min(e), hi.max(e))
+            })
+    }
+
+    /// The estimate one step on over the estimate here, from every start
+    /// point that has one.
+    pub fn rises(&self) -> Vec<f64> {
+        self.estimates
+            .iter()
+            .zip(self.estimates.iter().skip(STARTS_PER_STEP))
+            .map(|(now, next)| next / now)
+            .collect()
+    }
+}
+
+/// [`EstimateAlong`] on `scene` to `t_end`; the states along the run are the
+/// compensated pair's at a tolerance five decades below the estimate's, a
+/// quarter step at a time (the estimate of a step hardly depends on an
+/// error of its start that small).
+fn estimate_along<S: Scene<D>, const D: usize>(scene: &S, t_end: f64) -> EstimateAlong {
+    let pair = DPRKN12_ADAPTIVE;
+    let accepted = pair
+        .run(scene, t_end, ESTIMATE_TOLERANCE)
+        .map_or(0, |r| r.accepted)
+        .max(1);
+    let step = t_end / accepted as f64;
+    let quarter = step / STARTS_PER_STEP as f64;
+    let mut state = scene.initial();
+    let mut estimates = Vec::new();
+    for k in 0.. {
+        if k as f64 * quarter + step > t_end * (1.0 + 1e-12) {
+            break;
+        }
+        estimates.push(pair.estimate(scene, &state, step, ESTIMATE_TOLERANCE));
+        let Some(next) = DPRKN12_COMPENSATED
+            .integrate(scene, &state, quarter, ESTIMATE_TOLERANCE * 1e-5)
+            .ok()
+            .and_then(|r| r.trajectory.last().map(|(_, s)| *s))
+        else {
+            break;
+        };
+        state = next;
+    }
+    let c = pair.controller;
+    EstimateAlong {
+        step,
+        estimates,
+        margin: c.safety.powf(-1.0 / c.exponent),
+    }
 }
 
 impl SceneRace {
@@ -503,6 +589,7 @@ fn race_on<S: Scene<D>, const D: usize>(
         contenders,
         uncapped,
         uniform,
+        estimate: estimate_along(scene, t_end),
     }
 }
 
@@ -580,6 +667,48 @@ mod tests {
             }
             n = next;
         }
+    }
+
+    /// The rise over one step compares start points a step apart, and the
+    /// range spans every start point.
+    #[test]
+    fn rises_are_one_step_apart() {
+        let along = EstimateAlong {
+            step: 1.0,
+            estimates: vec![1.0, 2.0, 3.0, 4.0, 8.0, 2.0],
+            margin: 3.0,
+        };
+        assert_eq!(along.rises(), vec![8.0, 1.0]);
+        assert_eq!(along.range(), (1.0, 8.0));
+    }
+
+    /// On the circular orbit the estimate from any point is the one from
+    /// the start turned, so it moves only with the norm's per-component
+    /// weights, by at most `1 + |v| = 1 + 2 pi`, and nowhere rises by the
+    /// margin; the start points cover the run a quarter step apart, and the
+    /// margin is `0.9^-11`.
+    #[test]
+    fn the_estimate_on_the_circular_orbit_follows_its_symmetry() {
+        let scene = KeplerCircular;
+        let t_end = scene.default_t_end();
+        let along = estimate_along(&scene, t_end);
+        let (lo, hi) = along.range();
+        assert!(
+            lo > 0.0 && hi / lo <= 1.0 + std::f64::consts::TAU,
+            "{lo} .. {hi}"
+        );
+        assert!(along.rises().iter().all(|&r| r < along.margin));
+        let quarter = along.step / STARTS_PER_STEP as f64;
+        assert_eq!(
+            along.estimates.len(),
+            ((t_end - along.step) / quarter * (1.0 + 1e-12)).floor() as usize + 1
+        );
+        assert!((along.margin - 0.9f64.powi(-11)).abs() < 1e-12);
+        // the step is the run's length over its accepted steps at the tolerance
+        let run = DPRKN12_ADAPTIVE
+            .run(&scene, t_end, ESTIMATE_TOLERANCE)
+            .unwrap();
+        assert_eq!(along.step, t_end / run.accepted as f64);
     }
 
     /// brahe's step and stepladder's own DPRKN12 table, the same tableau in

@@ -2,7 +2,7 @@
 //! evidence, the findings on properties the crates do not claim, the
 //! defects autonomous scenes cannot show, and where each claim was read.
 
-use crate::race::{Contender, SceneRace, TARGETS};
+use crate::race::{Contender, ESTIMATE_TOLERANCE, STARTS_PER_STEP, SceneRace, TARGETS};
 use crate::target_cost::{self, Reach};
 use crate::{Audit, FIXED_PROPS, Prop, Provenance, disagreements};
 use std::fmt::Write;
@@ -654,6 +654,52 @@ fn uniform_section(races: &[SceneRace]) -> String {
     s
 }
 
+/// How stepladder's estimate for one step of a fixed size varies along
+/// each run, and where it rises over one step by more than the margin its
+/// controller leaves.
+fn estimate_section(races: &[SceneRace]) -> String {
+    let margin = races.first().map_or(f64::NAN, |r| r.estimate.margin);
+    let mut s = format!(
+        "\n**The estimate along the run.** What a step controller follows: stepladder's plain pair's\n\
+         own estimate (the number it accepts a step by, in units of the tolerance) for one step of the\n\
+         length `h` it takes on average at TOL {ESTIMATE_TOLERANCE:.0e} (the run over its accepted steps), from start points\n\
+         {STARTS_PER_STEP} a step along the run (the compensated pair's states there, five decades tighter). A\n\
+         controller sets each step from the estimates it has seen and aims at `0.9^11` of the\n\
+         tolerance, so a step of the size it holds is rejected where the estimate one step on is more\n\
+         than its margin, `0.9^-11` = {margin:.2}, above the last; it can only avoid that by knowing the\n\
+         rise in advance, or by steps shorter everywhere by the rise's 11th root over the margin's.\n\
+         Equal steps and a step cap do not follow the estimate at all.\n\n\
+         | scene | h | start points | smallest | largest | largest / smallest | largest rise over one step | start points whose rise exceeds {margin:.2} |\n\
+         | --- | --- | --- | --- | --- | --- | --- | --- |\n"
+    );
+    for race in races {
+        let e = &race.estimate;
+        let (lo, hi) = e.range();
+        let rises = e.rises();
+        let over = rises.iter().filter(|&&r| r > e.margin).count();
+        let largest_rise = rises.iter().copied().fold(f64::NAN, f64::max);
+        // a ratio in two decimals up to 100, in three digits beyond
+        let ratio = |x: f64| {
+            if x < 100.0 {
+                format!("{x:.2}")
+            } else {
+                format!("{x:.2e}")
+            }
+        };
+        let _ = writeln!(
+            s,
+            "| `{}` | {:.4} | {} | {lo:.2e} | {hi:.2e} | {} | {} | {over} of {} |",
+            race.scene,
+            e.step,
+            e.estimates.len(),
+            ratio(hi / lo),
+            ratio(largest_rise),
+            rises.len(),
+        );
+    }
+    s
+}
+
 /// Per scene, at the judged targets both sides reach, where stepladder and
 /// where brahe is cheaper beyond the scatter and where neither is, by
 /// evaluations and by time, and the targets only one side reaches.
@@ -964,6 +1010,7 @@ pub fn race_section(races: &[SceneRace]) -> String {
     s.push_str(&race_summary(races));
     s.push_str(&cap_section(races));
     s.push_str(&uniform_section(races));
+    s.push_str(&estimate_section(races));
     let _ = writeln!(
         s,
         "\nThe runs of each contender (tolerance: force evaluations (accepted steps + rejected attempts),\n\

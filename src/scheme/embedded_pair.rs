@@ -321,6 +321,38 @@ impl<const S: usize> EmbeddedPair<S> {
     }
 }
 
+impl<const S: usize> EmbeddedPair<S> {
+    /// The estimate the controller would weigh for one step of `h` from
+    /// `state`, in units of the tolerance `tol`: a step is accepted when it
+    /// is at most 1. It is that of the plain state update; compensated sums
+    /// change the state by a rounding, not the estimate. It costs a step's
+    /// force evaluations: it is for studying a controller along a
+    /// trajectory, not for running one.
+    ///
+    /// ```
+    /// use stepladder::scene::{KeplerCircular, Scene};
+    /// use stepladder::scheme::DPRKN12_ADAPTIVE;
+    /// let scene = KeplerCircular;
+    /// // a quarter of the period is too long a step at TOL 1e-9 and short
+    /// // enough at 1e-6
+    /// let quarter = 0.25 * scene.period();
+    /// assert!(DPRKN12_ADAPTIVE.estimate(&scene, &scene.initial(), quarter, 1e-9) > 1.0);
+    /// assert!(DPRKN12_ADAPTIVE.estimate(&scene, &scene.initial(), quarter, 1e-6) < 1.0);
+    /// ```
+    pub fn estimate<P: Scene<D>, const D: usize>(
+        &self,
+        scene: &P,
+        state: &State<D>,
+        h: f64,
+        tol: f64,
+    ) -> f64 {
+        let step = self
+            .table
+            .attempt(scene, state, scene.acceleration(&state.q), h);
+        scaled_norm(&step.error, state, &step.state, tol)
+    }
+}
+
 impl<const S: usize> AdaptiveIntegrator for EmbeddedPair<S> {
     fn name(&self) -> &'static str {
         self.name
@@ -603,6 +635,42 @@ mod tests {
             .unwrap();
         assert_eq!(run.end, RunEnd::Reached);
         assert!(run.rejected <= 2, "{} rejections", run.rejected);
+    }
+
+    /// The circular orbit is the same seen from any point of it, turned.
+    /// The scaled norm weighs each component by `1 / (1 + |y_i|)`, which a
+    /// quarter turn permutes with the components (`(x, y) -> (-y, x)`), so
+    /// the estimate from the state a quarter period on is the same number;
+    /// other turns move the weights within `[1 / (1 + |block|), 1]`, so
+    /// along the orbit it varies by at most `1 + |v| = 1 + 2 pi`. The step,
+    /// a quarter period, puts the estimate (some `1e-8`) far above the
+    /// round-off of the two solutions it is the difference of.
+    #[test]
+    fn the_estimate_is_the_controllers_and_has_the_orbits_symmetry() {
+        let scene = KeplerCircular;
+        let period = scene.period();
+        let at = |t: f64| {
+            DPRKN12_ADAPTIVE.estimate(&scene, &scene.exact(t).unwrap(), 0.25 * period, 1.0)
+        };
+        let along: Vec<f64> = (0..16).map(|k| at(k as f64 / 16.0)).collect();
+        for (k, e) in along.iter().enumerate() {
+            let turned = at(k as f64 / 16.0 + 0.25);
+            assert!(*e > 1e-9, "{k}: {e:e}");
+            assert!((turned / e - 1.0).abs() < 1e-6, "{k}: {turned:e} vs {e:e}");
+        }
+        let (lo, hi) = along.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &e| {
+            (lo.min(e), hi.max(e))
+        });
+        assert!(hi / lo <= 1.0 + std::f64::consts::TAU, "{lo:e} .. {hi:e}");
+        // and it is the number the controller weighs: every step a run
+        // accepted has it at most 1
+        let run = DPRKN12_ADAPTIVE.run(&scene, 3.0 * period, 1e-9).unwrap();
+        assert!(run.accepted > 10, "{} steps", run.accepted);
+        for w in run.trajectory.windows(2) {
+            let ((t0, y0), (t1, _)) = (w[0], w[1]);
+            let e = DPRKN12_ADAPTIVE.estimate(&scene, &y0, t1 - t0, 1e-9);
+            assert!(e > 0.0 && e <= 1.0, "the step from t = {t0}: {e}");
+        }
     }
 
     #[test]
