@@ -662,6 +662,11 @@ mod tests {
             (lo.min(e), hi.max(e))
         });
         assert!(hi / lo <= 1.0 + std::f64::consts::TAU, "{lo:e} .. {hi:e}");
+        // in units of the tolerance: a thousand times tighter, a thousand
+        // times larger (the scale is `tol (1 + |y_i|)`)
+        let start = scene.initial();
+        let relative = |tol| DPRKN12_ADAPTIVE.estimate(&scene, &start, 0.25 * period, tol);
+        assert!((relative(1e-9) / relative(1e-6) / 1e3 - 1.0).abs() < 1e-12);
         // and it is the number the controller weighs: every step a run
         // accepted has it at most 1
         let run = DPRKN12_ADAPTIVE.run(&scene, 3.0 * period, 1e-9).unwrap();

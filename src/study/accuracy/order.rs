@@ -1000,6 +1000,24 @@ fn judged(mut rungs: Vec<Rung>) -> Vec<Rung> {
 mod tests {
     use super::*;
 
+    /// The samples run from the start to `t_end` and no further. On the
+    /// separatrix `x = tanh(t / sqrt 2)` (`k = alpha = 1`) the force's slope
+    /// `-1 + 3 x^2` has magnitude 1 at the start and grows from `x^2 = 1/3`
+    /// on towards 2, so past `x^2 = 2/3` the fastest rate over `[0, t_end]`
+    /// is the one at `t_end` itself, exactly; a sample beyond `t_end` would
+    /// find a faster one.
+    #[test]
+    fn the_fastest_rate_is_sampled_from_the_start_to_the_end() {
+        let scene = crate::scene::Separatrix::default();
+        for t_end in [3.0, 10.0] {
+            let at_end = local_rate(&scene, &scene.exact(t_end).unwrap().q);
+            assert!(at_end > 1.0 && at_end < 2f64.sqrt());
+            assert_eq!(fastest_rate_along(&scene, t_end), at_end);
+        }
+        // early on, the start's rate of one is the fastest
+        assert_eq!(fastest_rate_along(&scene, 0.5), 1.0);
+    }
+
     #[test]
     fn interleaved_ladders_contain_every_half_step() {
         for (n0, m) in [(23, 4), (23, 8), (3, 2), (1, 4)] {

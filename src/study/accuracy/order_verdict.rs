@@ -916,14 +916,23 @@ mod tests {
                 &|| rate,
             )
         };
-        let resolved = at(RESOLVED_STEP_RADIANS / finest);
+        // the rate at which the finest rung takes exactly the bound, to the bit
+        let mut rate = RESOLVED_STEP_RADIANS / finest;
+        while finest * rate > RESOLVED_STEP_RADIANS {
+            rate = rate.next_down();
+        }
+        while finest * rate.next_up() <= RESOLVED_STEP_RADIANS {
+            rate = rate.next_up();
+        }
+        assert_eq!(finest * rate, RESOLVED_STEP_RADIANS);
+        let resolved = at(rate);
         assert_eq!(resolved.verdict, Verdict::Fail, "{}", resolved.reason);
         assert!(
             resolved.reason.contains("every rung blew up"),
             "{}",
             resolved.reason
         );
-        let unresolved = at(RESOLVED_STEP_RADIANS / finest * 1.001);
+        let unresolved = at(rate.next_up());
         assert_eq!(
             unresolved.verdict,
             Verdict::Inconclusive,
