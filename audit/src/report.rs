@@ -661,14 +661,14 @@ fn estimate_section(races: &[SceneRace]) -> String {
     let margin = races.first().map_or(f64::NAN, |r| r.estimate.margin);
     let mut s = format!(
         "\n**The estimate along the run.** What a step controller follows: stepladder's plain pair's\n\
-         own estimate (the number it accepts a step by, in units of the tolerance) for one step of the\n\
-         length `h` it takes on average at TOL {ESTIMATE_TOLERANCE:.0e} (the run over its accepted steps), from start points\n\
-         {STARTS_PER_STEP} a step along the run (the compensated pair's states there, five decades tighter). A\n\
-         controller sets each step from the estimates it has seen and aims at `0.9^11` of the\n\
-         tolerance, so a step of the size it holds is rejected where the estimate one step on is more\n\
-         than its margin, `0.9^-11` = {margin:.2}, above the last; it can only avoid that by knowing the\n\
-         rise in advance, or by steps shorter everywhere by the rise's 11th root over the margin's.\n\
-         Equal steps and a step cap do not follow the estimate at all.\n\n\
+         own estimate (the number it accepts a step by, in units of the tolerance) for one step of\n\
+         `h`, the run's length over the steps the pair accepts at TOL {ESTIMATE_TOLERANCE:.0e}, from start points\n\
+         {STARTS_PER_STEP} a step along the run (the compensated pair's states there, at a tolerance five decades\n\
+         tighter). A controller sets each step from the estimates it has seen and aims at `0.9^11`\n\
+         of the tolerance, so a step of the size it holds is rejected where the estimate one step on\n\
+         is more than its margin, `0.9^-11` = {margin:.2}, above the last. It can avoid that only by\n\
+         knowing the rise in advance, or by steps shorter everywhere by the 11th root of the rise over\n\
+         the margin. Equal steps and a step cap do not follow the estimate at all.\n\n\
          | scene | h | start points | smallest | largest | largest / smallest | largest rise over one step | start points whose rise exceeds {margin:.2} |\n\
          | --- | --- | --- | --- | --- | --- | --- | --- |\n"
     );
